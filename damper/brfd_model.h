@@ -1,0 +1,94 @@
+#pragma once
+/// @file brfd_model.h
+/// The BRFD damper model: LuGre friction (Eqs. 1-3 of the BRFD paper, ../shared/seed) with
+/// direction-dependent static and kinetic friction, and the semi-active kinetic friction of
+/// Eq. (4) fed into the Stribeck function, Eq. (5). Units: kip, in, s.
+///
+/// The model is a pure function of its bristle state and its inputs; the same code serves
+/// the virtual substructure, `hybridsim damper predict`, `diagnose` and the SUNDIALS
+/// monolithic reference (bristle_rate() is the right-hand side of Eq. 1).
+
+#include <array>
+#include <string>
+
+namespace damper {
+
+/// LuGre parameters, Eqs. (1)-(3). Forward means drum velocity v >= 0.
+struct LugreParams {
+  double sigma0_kip_per_in = 60.0;       ///< aggregate bristle stiffness σ0
+  double sigma1_kip_s_per_in = 0.5;      ///< bristle micro-damping σ1
+  double sigma2_kip_s_per_in = 0.05;     ///< viscous friction σ2
+  double fs_fwd_kip = 2.4;               ///< static friction Fs, forward (magnitude)
+  double fs_bwd_kip = 2.4;               ///< static friction Fs, backward (magnitude)
+  double fc_fwd_kip = 2.0;               ///< kinetic friction Fc (= b of Eq. 4), forward
+  double fc_bwd_kip = 2.0;               ///< kinetic friction Fc (= b of Eq. 4), backward
+  double vs_in_per_s = 0.5;              ///< Stribeck velocity v_s
+};
+
+/// Semi-active part, Eq. (4): slopes m_ij (Table 1, kip/in) and scaling factors C_k (Table 2).
+/// Row i of `slopes_kip_per_in` is m_i1, m_i2 (i = 1..4 stored at index i-1).
+struct SemiActiveParams {
+  std::array<std::array<double, 2>, 4> slopes_kip_per_in{{{-0.14, -0.15},
+                                                          {-15.29, -13.00},
+                                                          {-16.66, -15.77},
+                                                          {-0.13, -0.15}}};
+  std::array<double, 4> scaling{{119.68, 2.10, 1.94, 123.31}};  ///< C_1..C_4 (Table 2)
+  double actuator1_initial_in = 0.655;   ///< x'_1: electric actuator 1 position at t = 0, in
+  double actuator2_initial_in = 0.8559;  ///< x'_2: electric actuator 2 position at t = 0, in
+  double fc_floor_kip = 0.05;            ///< Eq. (4) is clipped below at this kinetic friction
+};
+
+enum class DamperKind { passive_lugre, semiactive };
+
+/// Everything needed to build a BrfdModel.
+struct BrfdParams {
+  DamperKind kind = DamperKind::semiactive;
+  LugreParams lugre;
+  SemiActiveParams semiactive;
+};
+
+/// Inputs at one instant. Drum displacement/velocity in in and in/s; actuator positions in in.
+struct DamperInput {
+  double drum_disp_in = 0.0;
+  double drum_vel_in_per_s = 0.0;
+  double actuator1_in = 0.0;   ///< x_1 (ignored by passive LuGre)
+  double actuator2_in = 0.0;   ///< x_2 (ignored by passive LuGre)
+};
+
+/// The BRFD friction model with its bristle state z (in).
+class BrfdModel {
+ public:
+  explicit BrfdModel(const BrfdParams& params);
+
+  /// Advances the bristle state over dt_s with the input held constant and returns the
+  /// friction force (kip) at the end of the step, Eq. (3). The bristle ODE, Eq. (1), is
+  /// linear in z for constant v, so the step uses its exact exponential solution:
+  /// unconditionally stable for any σ0 (the bristle state is stiff at 1024 Hz).
+  double step(const DamperInput& in, double dt_s);
+
+  /// Kinetic friction Fc (kip, magnitude): the constant b per direction for passive LuGre,
+  /// Eq. (4) of the paper for the semi-active model.
+  double kinetic_friction_kip(const DamperInput& in) const;
+  /// Stribeck function g(v), Eqs. (2)/(5), kip.
+  double stribeck_kip(const DamperInput& in) const;
+  /// dz/dt of Eq. (1), in/s, for bristle state z (in).
+  double bristle_rate(double z_in, const DamperInput& in) const;
+  /// Friction force, Eq. (3), kip, for bristle state z.
+  double force_kip(double z_in, const DamperInput& in) const;
+
+  double bristle_in() const { return z_in_; }
+  void set_bristle_in(double z_in) { z_in_ = z_in; }
+  void reset() { z_in_ = 0.0; }
+  const BrfdParams& params() const { return params_; }
+
+ private:
+  BrfdParams params_;
+  double z_in_ = 0.0;
+};
+
+/// Name of a DamperKind as used in configs ("passive_lugre", "semiactive").
+std::string to_string(DamperKind kind);
+/// Parses a DamperKind; throws std::invalid_argument naming the value.
+DamperKind damper_kind_from_string(const std::string& name);
+
+}  // namespace damper
