@@ -2,9 +2,21 @@
 //   run --config FILE        one hybrid run (server/hybrid_run.h)
 //   bench                    LCM and step round trips, in-process speed (server/bench.h)
 //   damper ...               damper model tools (server/commands/damper_commands.h)
+//   batch ...                many records (server/commands/batch_commands.h)
+//   diagnose ...             model-discrepancy workflow (server/commands/diagnose_commands.h)
+// Each command group lives in server/commands/<group>_commands.cc; CMake compiles in the
+// groups that exist and defines HYBRIDSIM_HAS_<GROUP>.
 #include "server/bench.h"
-#include "server/commands/damper_commands.h"
 #include "server/hybrid_run.h"
+#ifdef HYBRIDSIM_HAS_DAMPER
+#include "server/commands/damper_commands.h"
+#endif
+#ifdef HYBRIDSIM_HAS_BATCH
+#include "server/commands/batch_commands.h"
+#endif
+#ifdef HYBRIDSIM_HAS_DIAGNOSE
+#include "server/commands/diagnose_commands.h"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -28,7 +40,15 @@ int main(int argc, char** argv) {
   bench->add_option("--ten-story", bench_options.ten_story_config, "10-story config");
   bench->add_option("--round-trips", bench_options.round_trips, "LCM round trips to time");
 
+#ifdef HYBRIDSIM_HAS_DAMPER
   add_damper_commands(app);
+#endif
+#ifdef HYBRIDSIM_HAS_BATCH
+  add_batch_commands(app);
+#endif
+#ifdef HYBRIDSIM_HAS_DIAGNOSE
+  add_diagnose_commands(app);
+#endif
 
   int code = 0;
   run->callback([&] { code = server::run_command(config_path, out_dir, quiet); });
