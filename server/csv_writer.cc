@@ -6,50 +6,101 @@
 namespace server {
 
 namespace {
-constexpr std::size_t kBlockBytes = 1 << 16;
-constexpr std::size_t kMaxValueChars = 32;
+constexpr std::size_t kRowsPerBlock = 1024;
 }  // namespace
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), buffer_(kBlockBytes + 4096) {
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns, long expected_rows)
+    : path_(path), columns_(columns.size()), block_values_(kRowsPerBlock * columns.size()) {
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw std::runtime_error("cannot write " + path);
   for (std::size_t i = 0; i < columns.size(); ++i) {
     std::fputs(columns[i].c_str(), file_);
     std::fputc(i + 1 < columns.size() ? ',' : '\n', file_);
   }
+  std::fflush(file_);
+  const std::size_t blocks = static_cast<std::size_t>(std::max(1L, expected_rows)) / kRowsPerBlock + 2;
+  storage_.resize(blocks);
+  for (Block& b : storage_) b.reserve(block_values_);
+  current_ = &storage_[next_free_++];
+  text_.resize(block_values_ * 32 + kRowsPerBlock);
+  thread_ = std::thread(&CsvWriter::writer_loop, this);
 }
 
 CsvWriter::~CsvWriter() {
-  if (file_) {
-    flush();
-    std::fclose(file_);
-  }
-}
-
-void CsvWriter::add(double value) {
-  if (used_ + kMaxValueChars + 2 > buffer_.size()) buffer_.resize(buffer_.size() * 2);
-  if (row_started_) buffer_[used_++] = ',';
-  // Shortest representation that round-trips exactly: results are reproducible bit for bit.
-  const auto r = std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value);
-  used_ = static_cast<std::size_t>(r.ptr - buffer_.data());
-  row_started_ = true;
+  finish();
+  std::fclose(file_);
 }
 
 void CsvWriter::end_row() {
-  buffer_[used_++] = '\n';
-  row_started_ = false;
-  if (used_ >= kBlockBytes) flush();
+  if (current_->size() >= block_values_) hand_over();
 }
 
-void CsvWriter::flush() {
-  if (used_ > 0) {
-    if (std::fwrite(buffer_.data(), 1, used_, file_) != used_) {
-      throw std::runtime_error("write failed on " + path_);
-    }
-    used_ = 0;
+void CsvWriter::hand_over() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (current_->empty()) return;
+  queue_.push_back(current_);
+  if (next_free_ < storage_.size()) {
+    current_ = &storage_[next_free_++];
+  } else if (!written_.empty()) {
+    current_ = written_.back();
+    written_.pop_back();
+    current_->clear();
+  } else {
+    storage_.emplace_back();  // deque-like growth only when the writer lags far behind
+    storage_.back().reserve(block_values_);
+    current_ = &storage_.back();
   }
+  lock.unlock();
+  wake_writer_.notify_one();
+}
+
+void CsvWriter::finish() {
+  if (!thread_.joinable()) return;
+  hand_over();
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    written_all_.wait(lock, [&] { return queue_.empty() && !busy_; });
+    stopping_ = true;
+  }
+  wake_writer_.notify_one();
+  thread_.join();
   std::fflush(file_);
+}
+
+std::string CsvWriter::error() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return error_;
+}
+
+void CsvWriter::writer_loop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_writer_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (queue_.empty() && stopping_) return;
+    Block* block = queue_.front();
+    queue_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    write_block(*block);
+    lock.lock();
+    busy_ = false;
+    written_.push_back(block);
+    if (queue_.empty()) written_all_.notify_all();
+  }
+}
+
+void CsvWriter::write_block(const Block& block) {
+  char* out = text_.data();
+  char* const end = text_.data() + text_.size();
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    out = std::to_chars(out, end, block[i]).ptr;
+    *out++ = (i + 1) % columns_ == 0 ? '\n' : ',';
+  }
+  const std::size_t bytes = static_cast<std::size_t>(out - text_.data());
+  if (std::fwrite(text_.data(), 1, bytes, file_) != bytes || std::fflush(file_) != 0) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (error_.empty()) error_ = "write failed on " + path_;
+  }
 }
 
 }  // namespace server

@@ -1,33 +1,58 @@
 #pragma once
 /// @file csv_writer.h
-/// Fast CSV rows of doubles for the step loop: formats with std::to_chars into a buffer
-/// and writes it out in blocks (no stream formatting, no allocation per row). flush()
-/// pushes everything to the OS, so a failing run keeps every row written so far.
+/// CSV time histories written off the step loop. The loop only copies doubles into
+/// preallocated blocks (no formatting, no system call, no allocation while the
+/// preallocation lasts); a writer thread formats them with std::to_chars (shortest
+/// round-trip form, so results reproduce bit for bit) and writes each block out as soon as
+/// it is handed over. hand_over() is non-blocking; finish() waits until every row is on disk.
 
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace server {
 
 class CsvWriter {
  public:
-  /// Opens (truncates) `path` and writes the header line; throws std::runtime_error naming it.
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns);
-  ~CsvWriter();
+  /// Opens (truncates) `path`, writes the header line and starts the writer thread.
+  /// `expected_rows` sizes the preallocated blocks. Throws std::runtime_error naming the file.
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns, long expected_rows);
+  ~CsvWriter();  ///< finish()es
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
 
-  void add(double value);  ///< next value of the current row
-  void end_row();          ///< terminates the row (flushes the block when it is full)
-  void flush();            ///< writes the buffer to the file and fflush()es it
+  void add(double value) { current_->push_back(value); }  ///< next value of the current row
+  void end_row();     ///< ends the row; hands the block over when it is full
+  void hand_over();   ///< gives the rows so far to the writer thread (non-blocking)
+  void finish();      ///< hands over, waits until everything is written and flushed
+  /// Error of the writer thread, "" if none (a full disk must not go unnoticed).
+  std::string error() const;
 
  private:
+  using Block = std::vector<double>;
+  void writer_loop();
+  void write_block(const Block& block);
+
   std::FILE* file_ = nullptr;
   std::string path_;
-  std::vector<char> buffer_;
-  std::size_t used_ = 0;
-  bool row_started_ = false;
+  std::size_t columns_ = 0;
+  std::size_t block_values_ = 0;
+  std::vector<Block> storage_;       // preallocated blocks, reused in order
+  std::size_t next_free_ = 0;
+  Block* current_ = nullptr;
+  std::deque<Block*> queue_;         // handed over, not yet written
+  std::vector<Block*> written_;      // written, may be reused
+  mutable std::mutex mutex_;
+  std::condition_variable wake_writer_, written_all_;
+  bool stopping_ = false;
+  bool busy_ = false;
+  std::string error_;
+  std::vector<char> text_;
+  std::thread thread_;
 };
 
 }  // namespace server

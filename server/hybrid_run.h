@@ -28,7 +28,8 @@ struct RunSummary {
   std::string error;                  ///< why it failed
   long steps = 0;                     ///< steps completed
   double sim_time_s = 0.0;            ///< simulated time reached
-  double wall_s = 0.0;                ///< wall-clock time of the step loop
+  double wall_s = 0.0;                ///< wall-clock time of the run, results on disk
+  double loop_wall_s = 0.0;           ///< wall-clock time of the step loop alone
   double pga_g = 0.0;                 ///< peak ground acceleration of the (scaled) record
   Eigen::VectorXd modal_periods_s;    ///< periods of the building's modes, s
   Eigen::VectorXd peak_drift_in;      ///< per story, max |interstory drift|

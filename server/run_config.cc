@@ -71,7 +71,9 @@ RunConfig load_run_config(const std::string& path) {
 
   if (top.has("output")) {
     const common::YamlSection o = top.section("output");
-    o.allow_only({"dir", "flush_every_steps"});
+    o.allow_only({"dir", "flush_every_steps", "every_n_steps"});
+    c.output.every_n_steps = o.get_int("every_n_steps", c.output.every_n_steps);
+    if (c.output.every_n_steps < 1) o.fail("every_n_steps", "must be >= 1");
     c.output.dir = resolve(path, o.get_string("dir", c.output.dir));
     c.output.flush_every_steps = o.get_int("flush_every_steps", c.output.flush_every_steps);
     if (c.output.flush_every_steps < 1) o.fail("flush_every_steps", "must be >= 1");
@@ -104,7 +106,8 @@ std::string run_config_to_yaml(const RunConfig& c) {
     << "\n  start_timeout_s: " << t.start_timeout_s << "\n  write_lcm_log: " << t.write_lcm_log
     << "\n"
     << "output:\n  dir: " << fs::absolute(c.output.dir).string()
-    << "\n  flush_every_steps: " << c.output.flush_every_steps << "\n";
+    << "\n  flush_every_steps: " << c.output.flush_every_steps
+    << "\n  every_n_steps: " << c.output.every_n_steps << "\n";
   return o.str();
 }
 

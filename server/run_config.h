@@ -41,6 +41,7 @@ struct DamperSettings {
 struct OutputSettings {
   std::string dir = "results";       ///< results folder (created)
   int flush_every_steps = 1024;      ///< time-history rows are flushed at least this often
+  int every_n_steps = 1;             ///< time-history row every n steps (peaks use every step)
 };
 
 struct RunConfig {
