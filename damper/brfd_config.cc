@@ -6,7 +6,7 @@
 namespace damper {
 
 BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
-  s.allow_only({"model", "lugre", "semiactive"});
+  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity"});
   BrfdParams p;
   p.kind = damper_kind_from_string(s.get_choice("model", {"passive_lugre", "semiactive"}));
   const common::YamlSection l = s.section("lugre");
@@ -40,6 +40,26 @@ BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
     sa.actuator2_initial_in = a.get_double_in("actuator2_initial_in", sa.actuator2_initial_in, -10, 10);
     sa.fc_floor_kip = a.get_double_in("fc_floor_kip", sa.fc_floor_kip, 0.0, 1e3);
   }
+  if (s.has("b_of_velocity")) {
+    // Optional b = F(v) of Eq. (4): piecewise linear in |v| per direction.
+    const common::YamlSection b = s.section("b_of_velocity");
+    b.allow_only({"speed_in_per_s", "fwd_kip", "bwd_kip"});
+    KineticFrictionCurve& c = p.b_of_velocity;
+    c.speed_in_per_s = b.get_double_list("speed_in_per_s");
+    c.fwd_kip = b.get_double_list("fwd_kip");
+    c.bwd_kip = b.get_double_list("bwd_kip");
+    if (c.speed_in_per_s.empty()) b.fail("speed_in_per_s", "needs at least one speed");
+    if (c.fwd_kip.size() != c.speed_in_per_s.size())
+      b.fail("fwd_kip", "needs one value per speed (" + std::to_string(c.speed_in_per_s.size()) + ")");
+    if (c.bwd_kip.size() != c.speed_in_per_s.size())
+      b.fail("bwd_kip", "needs one value per speed (" + std::to_string(c.speed_in_per_s.size()) + ")");
+    for (std::size_t i = 0; i < c.speed_in_per_s.size(); ++i) {
+      if (c.speed_in_per_s[i] < 0.0 || (i > 0 && c.speed_in_per_s[i] <= c.speed_in_per_s[i - 1]))
+        b.fail("speed_in_per_s", "must be >= 0 and strictly increasing");
+      if (!(c.fwd_kip[i] > 0.0)) b.fail("fwd_kip", "values must be > 0");
+      if (!(c.bwd_kip[i] > 0.0)) b.fail("bwd_kip", "values must be > 0");
+    }
+  }
   return p;
 }
 
@@ -70,6 +90,20 @@ std::string brfd_params_to_yaml(const BrfdParams& p) {
     << "  actuator1_initial_in: " << a.actuator1_initial_in << "\n"
     << "  actuator2_initial_in: " << a.actuator2_initial_in << "\n"
     << "  fc_floor_kip: " << a.fc_floor_kip << "\n";
+  const KineticFrictionCurve& c = p.b_of_velocity;
+  if (!c.empty()) {
+    auto list = [&o](const std::vector<double>& v) {
+      o << "[";
+      for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << v[i];
+      o << "]\n";
+    };
+    o << "b_of_velocity:\n  speed_in_per_s: ";
+    list(c.speed_in_per_s);
+    o << "  fwd_kip: ";
+    list(c.fwd_kip);
+    o << "  bwd_kip: ";
+    list(c.bwd_kip);
+  }
   return o.str();
 }
 

@@ -8,10 +8,25 @@ namespace damper {
 
 BrfdModel::BrfdModel(const BrfdParams& params) : params_(params) {}
 
+double KineticFrictionCurve::at(double v) const {
+  const std::vector<double>& b = v >= 0.0 ? fwd_kip : bwd_kip;
+  const double s = std::abs(v);
+  if (s <= speed_in_per_s.front()) return b.front();
+  if (s >= speed_in_per_s.back()) return b.back();
+  const auto it = std::upper_bound(speed_in_per_s.begin(), speed_in_per_s.end(), s);
+  const std::size_t k = static_cast<std::size_t>(it - speed_in_per_s.begin());
+  const double w = (s - speed_in_per_s[k - 1]) / (speed_in_per_s[k] - speed_in_per_s[k - 1]);
+  return b[k - 1] + w * (b[k] - b[k - 1]);
+}
+
+double BrfdModel::base_kinetic_friction_kip(double v) const {
+  if (!params_.b_of_velocity.empty()) return params_.b_of_velocity.at(v);
+  return v >= 0.0 ? params_.lugre.fc_fwd_kip : params_.lugre.fc_bwd_kip;
+}
+
 double BrfdModel::kinetic_friction_kip(const DamperInput& in) const {
-  const LugreParams& p = params_.lugre;
   const bool forward = in.drum_vel_in_per_s >= 0.0;
-  const double b = forward ? p.fc_fwd_kip : p.fc_bwd_kip;
+  const double b = base_kinetic_friction_kip(in.drum_vel_in_per_s);
   if (params_.kind == DamperKind::passive_lugre) return b;
   // Eq. (4): b + (C_a m_a1 + C_b m_b1)(x1 - x1') + (C_a m_a2 + C_b m_b2)(x2 - x2'),
   // rows (1,2) forward and (3,4) backward.

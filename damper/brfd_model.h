@@ -10,6 +10,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace damper {
 
@@ -38,6 +39,18 @@ struct SemiActiveParams {
   double fc_floor_kip = 0.05;            ///< Eq. (4) is clipped below at this kinetic friction
 };
 
+/// Optional b = F(v) of Eq. (4) ("for erratic or asymmetric excitations, b itself may be a
+/// function of drum velocity"): b per direction, piecewise linear in the speed |v| and held
+/// constant beyond the end points. Empty (the default) means b = fc_fwd_kip / fc_bwd_kip.
+struct KineticFrictionCurve {
+  std::vector<double> speed_in_per_s;  ///< strictly increasing, >= 0
+  std::vector<double> fwd_kip;         ///< b for v >= 0 at each speed, kip (> 0)
+  std::vector<double> bwd_kip;         ///< b for v < 0 at each speed, kip (> 0)
+  bool empty() const { return speed_in_per_s.empty(); }
+  /// b (kip) at drum velocity v; requires !empty(). Does not allocate.
+  double at(double v_in_per_s) const;
+};
+
 enum class DamperKind { passive_lugre, semiactive };
 
 /// Everything needed to build a BrfdModel.
@@ -45,6 +58,10 @@ struct BrfdParams {
   DamperKind kind = DamperKind::semiactive;
   LugreParams lugre;
   SemiActiveParams semiactive;
+  /// b = F(v), optional; when set it replaces fc_fwd_kip / fc_bwd_kip as b in both models.
+  /// Further effects (backlash after reversal, residual static force) are a later issue: they
+  /// belong here as optional members, read in kinetic_friction_kip()/force_kip().
+  KineticFrictionCurve b_of_velocity;
 };
 
 /// Inputs at one instant. Drum displacement/velocity in in and in/s; actuator positions in in.
@@ -66,6 +83,8 @@ class BrfdModel {
   /// unconditionally stable for any σ0 (the bristle state is stiff at 1024 Hz).
   double step(const DamperInput& in, double dt_s);
 
+  /// b of Eq. (4), kip: fc_fwd_kip / fc_bwd_kip by the sign of v, or b_of_velocity if set.
+  double base_kinetic_friction_kip(double v_in_per_s) const;
   /// Kinetic friction Fc (kip, magnitude): the constant b per direction for passive LuGre,
   /// Eq. (4) of the paper for the semi-active model.
   double kinetic_friction_kip(const DamperInput& in) const;
