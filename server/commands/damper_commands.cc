@@ -30,7 +30,8 @@ std::pair<double, double> parse_window(const std::string& text) {
   }
 }
 
-// Runs `body`, turning the project's user-input errors into CLI errors (message + exit 1).
+// Runs `body`, turning the project's user-input errors into exit code 1 with the message on
+// stderr (CLI11's App::exit() prints nothing for a RuntimeError, so it is printed here).
 template <typename F>
 void guarded(F&& body) {
   try {
@@ -38,7 +39,8 @@ void guarded(F&& body) {
   } catch (const CLI::Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw CLI::RuntimeError(std::string("error: ") + e.what(), 1);
+    std::cerr << "error: " << e.what() << std::endl;
+    throw CLI::RuntimeError(1);
   }
 }
 

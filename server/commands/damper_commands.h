@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-/// Adds the `damper` subcommand group to `app`. Each subcommand runs in its callback; errors
-/// are reported as CLI::RuntimeError (exit code 1) with the message on stderr.
+/// Adds the `damper` subcommand group to `app`. Each subcommand runs in its callback; a
+/// user-input error (bad data file, config, window) prints "error: <message>" on stderr and
+/// throws CLI::RuntimeError(1), which App::exit() turns into exit code 1.
 void add_damper_commands(CLI::App& app);
