@@ -1,0 +1,85 @@
+#include "structure/cr_integrator.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace structure {
+
+CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
+    : building_(building), dt_s_(dt_s) {
+  if (!std::isfinite(dt_s) || !(dt_s > 0.0)) {
+    throw std::invalid_argument("CrIntegrator: time step must be finite and > 0, got " +
+                                std::to_string(dt_s));
+  }
+  const Eigen::MatrixXd& m = building.mass();
+  const Eigen::MatrixXd denom = m + (0.5 * dt_s) * building.damping() + (0.25 * dt_s * dt_s) * building.stiffness();
+  alpha_ = denom.partialPivLu().solve(m);
+  mass_llt_.compute(m);
+  if (mass_llt_.info() != Eigen::Success) {
+    throw std::invalid_argument("CrIntegrator: mass matrix is not positive definite");
+  }
+  mass_iota_ = m * building.influence();
+  const int n = building.num_stories();
+  x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = rhs_ = Eigen::VectorXd::Zero(n);
+}
+
+void CrIntegrator::initialize(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
+  const int n = building_.num_stories();
+  initialize(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), ground_accel_in_per_s2, damper_force_kip);
+}
+
+void CrIntegrator::initialize(const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
+                              double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
+  const int n = building_.num_stories();
+  if (disp_in.size() != n || vel_in_per_s.size() != n) {
+    throw std::invalid_argument("CrIntegrator::initialize: expected " + std::to_string(n) +
+                                " floor displacements and velocities");
+  }
+  if (damper_force_kip.size() != building_.num_dampers()) {
+    throw std::invalid_argument("CrIntegrator::initialize: expected " +
+                                std::to_string(building_.num_dampers()) + " damper forces, got " +
+                                std::to_string(damper_force_kip.size()));
+  }
+  x_ = disp_in;
+  v_ = vel_in_per_s;
+  rhs_.noalias() = -ground_accel_in_per_s2 * mass_iota_;
+  rhs_.noalias() -= building_.damping() * v_;
+  rhs_.noalias() -= building_.stiffness() * x_;
+  rhs_.noalias() -= building_.damper_gamma() * damper_force_kip;
+  a_ = mass_llt_.solve(rhs_);
+  x_next_ = x_;
+  v_next_ = v_;
+  step_ = 0;
+  initialized_ = true;
+  predicted_ = false;
+}
+
+void CrIntegrator::predict() {
+  if (!initialized_) throw std::logic_error("CrIntegrator::predict called before initialize");
+  alpha_a_.noalias() = alpha_ * a_;
+  v_next_ = v_ + dt_s_ * alpha_a_;
+  x_next_ = x_ + dt_s_ * v_ + (dt_s_ * dt_s_) * alpha_a_;
+  predicted_ = true;
+}
+
+void CrIntegrator::complete(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
+  if (!predicted_) throw std::logic_error("CrIntegrator::complete called without predict for this step");
+  if (damper_force_kip.size() != building_.num_dampers()) {
+    throw std::invalid_argument("CrIntegrator::complete: expected " +
+                                std::to_string(building_.num_dampers()) + " damper forces, got " +
+                                std::to_string(damper_force_kip.size()));
+  }
+  rhs_.noalias() = -ground_accel_in_per_s2 * mass_iota_;
+  rhs_.noalias() -= building_.damping() * v_next_;
+  rhs_.noalias() -= building_.stiffness() * x_next_;
+  rhs_.noalias() -= building_.damper_gamma() * damper_force_kip;
+  a_ = rhs_;
+  mass_llt_.solveInPlace(a_);
+  x_ = x_next_;
+  v_ = v_next_;
+  ++step_;
+  predicted_ = false;
+}
+
+}  // namespace structure
