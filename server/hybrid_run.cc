@@ -113,8 +113,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       ag = record.accel_in_per_s2(t_next);
       cr.complete(ag, force);
       energy.add_step(dt, cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
-      drum_vel.noalias() = gamma.transpose() * cr.velocity_in_per_s();
-      damper_power = force.cwiseProduct(drum_vel);
+      damper_power = force.cwiseProduct(drum_vel);  // committed velocity is v₊: drum_vel still holds Γᵀv₊
       energy_per_damper += 0.5 * dt * (damper_power + damper_power_prev);
       damper_power_prev = damper_power;
 

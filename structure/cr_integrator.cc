@@ -20,6 +20,10 @@ CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
     throw std::invalid_argument("CrIntegrator: mass matrix is not positive definite");
   }
   mass_iota_ = m * building.influence();
+  // M⁻¹C, M⁻¹K, M⁻¹Γ once, so that a step is three small matrix-vector products.
+  minv_damping_ = mass_llt_.solve(building.damping());
+  minv_stiffness_ = mass_llt_.solve(building.stiffness());
+  minv_gamma_ = mass_llt_.solve(building.damper_gamma());
   const int n = building.num_stories();
   x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = rhs_ = Eigen::VectorXd::Zero(n);
 }
@@ -70,12 +74,11 @@ void CrIntegrator::complete(double ground_accel_in_per_s2, const Eigen::VectorXd
                                 std::to_string(building_.num_dampers()) + " damper forces, got " +
                                 std::to_string(damper_force_kip.size()));
   }
-  rhs_.noalias() = -ground_accel_in_per_s2 * mass_iota_;
-  rhs_.noalias() -= building_.damping() * v_next_;
-  rhs_.noalias() -= building_.stiffness() * x_next_;
-  rhs_.noalias() -= building_.damper_gamma() * damper_force_kip;
-  a_ = rhs_;
-  mass_llt_.solveInPlace(a_);
+  // a₊ = −ι·ü_g − M⁻¹C·v₊ − M⁻¹K·x₊ − M⁻¹Γ·F  (= M⁻¹ of the equation above)
+  a_ = -ground_accel_in_per_s2 * building_.influence();
+  a_.noalias() -= minv_damping_ * v_next_;
+  a_.noalias() -= minv_stiffness_ * x_next_;
+  a_.noalias() -= minv_gamma_ * damper_force_kip;
   x_ = x_next_;
   v_ = v_next_;
   ++step_;

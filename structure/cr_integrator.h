@@ -76,6 +76,7 @@ class CrIntegrator {
   Eigen::MatrixXd alpha_;
   Eigen::LLT<Eigen::MatrixXd> mass_llt_;
   Eigen::VectorXd mass_iota_;  // M·ι
+  Eigen::MatrixXd minv_damping_, minv_stiffness_, minv_gamma_;  // M⁻¹C, M⁻¹K, M⁻¹Γ
   Eigen::VectorXd x_, v_, a_, x_next_, v_next_, alpha_a_, rhs_;
   long step_ = 0;
   bool initialized_ = false;

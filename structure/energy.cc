@@ -7,7 +7,23 @@
 
 namespace structure {
 
-EnergyLedger::EnergyLedger(const ShearBuilding& building) : building_(building) {}
+EnergyLedger::EnergyLedger(const ShearBuilding& building)
+    : building_(building),
+      mass_iota_(building.mass() * building.influence()),
+      work_(building.num_stories()),
+      drum_vel_(building.num_dampers()),
+      last_x_(Eigen::VectorXd::Zero(building.num_stories())),
+      last_v_(Eigen::VectorXd::Zero(building.num_stories())) {}
+
+double EnergyLedger::kinetic_kip_in() const {
+  work_.noalias() = building_.mass() * last_v_;
+  return 0.5 * last_v_.dot(work_);
+}
+
+double EnergyLedger::strain_kip_in() const {
+  work_.noalias() = building_.stiffness() * last_x_;
+  return 0.5 * last_x_.dot(work_);
+}
 
 EnergyLedger::Powers EnergyLedger::powers(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                           double ug, const Eigen::VectorXd& f) const {
@@ -18,20 +34,22 @@ EnergyLedger::Powers EnergyLedger::powers(const Eigen::VectorXd& x, const Eigen:
                                 std::to_string(building_.num_dampers()) + " damper forces");
   }
   Powers p;
-  p.input = -v.dot(building_.mass() * building_.influence()) * ug;
-  p.damping = v.dot(building_.damping() * v);
-  p.damper = f.dot(building_.damper_gamma().transpose() * v);
+  p.input = -v.dot(mass_iota_) * ug;
+  work_.noalias() = building_.damping() * v;
+  p.damping = v.dot(work_);
+  drum_vel_.noalias() = building_.damper_gamma().transpose() * v;
+  p.damper = f.dot(drum_vel_);
   return p;
 }
 
 void EnergyLedger::start(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double ug,
                          const Eigen::VectorXd& f) {
   last_ = powers(x, v, ug, f);
-  input_ = damping_ = damper_ = 0.0;
-  kinetic_ = 0.5 * v.dot(building_.mass() * v);
-  strain_ = 0.5 * x.dot(building_.stiffness() * x);
+  damping_ = damper_ = 0.0;
+  last_x_ = x;
+  last_v_ = v;
   // A start away from rest counts the initial energy as input.
-  input_ = kinetic_ + strain_;
+  input_ = kinetic_kip_in() + strain_kip_in();
   started_ = true;
 }
 
@@ -42,13 +60,13 @@ void EnergyLedger::add_step(double dt_s, const Eigen::VectorXd& x, const Eigen::
   input_ += 0.5 * dt_s * (last_.input + now.input);
   damping_ += 0.5 * dt_s * (last_.damping + now.damping);
   damper_ += 0.5 * dt_s * (last_.damper + now.damper);
-  kinetic_ = 0.5 * v.dot(building_.mass() * v);
-  strain_ = 0.5 * x.dot(building_.stiffness() * x);
+  last_x_ = x;
+  last_v_ = v;
   last_ = now;
 }
 
 double EnergyLedger::balance_error() const {
-  const double stored_and_dissipated = kinetic_ + strain_ + damping_ + damper_;
+  const double stored_and_dissipated = kinetic_kip_in() + strain_kip_in() + damping_ + damper_;
   return std::abs(input_ - stored_and_dissipated) / std::max(std::abs(input_), 1e-12);
 }
 

@@ -30,8 +30,8 @@ class EnergyLedger {
                 double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip);
 
   double input_kip_in() const { return input_; }             ///< E_in = −∫ẋᵀMιü_g dt
-  double kinetic_kip_in() const { return kinetic_; }         ///< ½ẋᵀMẋ at the last sample
-  double strain_kip_in() const { return strain_; }           ///< ½xᵀKx at the last sample
+  double kinetic_kip_in() const;                             ///< ½ẋᵀMẋ at the last sample
+  double strain_kip_in() const;                              ///< ½xᵀKx at the last sample
   double inherent_damping_kip_in() const { return damping_; }///< ∫ẋᵀCẋ dt
   double damper_kip_in() const { return damper_; }           ///< ∫Fᵀ(Γᵀẋ) dt (dissipated by the dampers)
   /// |E_in − (kinetic + strain + damping + damper)| / max(|E_in|, 1e-12).
@@ -45,9 +45,12 @@ class EnergyLedger {
                 const Eigen::VectorXd& f) const;
 
   const ShearBuilding& building_;
+  Eigen::VectorXd mass_iota_;          // M·ι, precomputed
+  mutable Eigen::VectorXd work_, drum_vel_;  // scratch: add_step allocates nothing
+  Eigen::VectorXd last_x_, last_v_;          // last sample: stored energies are computed on demand
   bool started_ = false;
   Powers last_;
-  double input_ = 0.0, kinetic_ = 0.0, strain_ = 0.0, damping_ = 0.0, damper_ = 0.0;
+  double input_ = 0.0, damping_ = 0.0, damper_ = 0.0;
 };
 
 }  // namespace structure
