@@ -11,13 +11,11 @@ int main(int argc, char** argv) {
   CLI::App app{"brfd-substructure: BRFD damper substructure over LCM (units kip, in, s)"};
   damper::SubstructureNodeOptions o;
   std::string model_config;
-  bool private_netns = false;
   app.add_option("--model-config", model_config, "damper model YAML (configs/brfd-default.yaml)");
   app.add_option("--url", o.url, "LCM URL, as in the server config's transport.url")->required();
   app.add_option("--channel-prefix", o.channels.prefix, "channel prefix, as transport.channel_prefix");
   app.add_option("--run-id", o.run_id, "answer only this run id");
   app.add_flag("--lab-network", o.lab_network, "the URL is a lab network: allow multicast outside a netns");
-  app.add_flag("--private-netns", private_netns, "enter a private network namespace first (standalone use)");
   app.add_flag("--echo", o.echo, "answer with zero force at once (LCM round-trip benchmark)");
   app.add_option("--watchdog-s", o.command_watchdog_s, "exit if a started run sends no command this long");
   CLI11_PARSE(app, argc, argv);
@@ -26,7 +24,6 @@ int main(int argc, char** argv) {
       if (model_config.empty()) throw std::invalid_argument("--model-config is required (except with --echo)");
       o.model = damper::load_brfd_params(model_config);
     }
-    if (private_netns && !messages::in_private_network_namespace()) messages::enter_private_network_namespace();
     return damper::run_substructure_node(o);
   } catch (const std::exception& e) {
     std::cerr << "brfd-substructure: " << e.what() << "\n";

@@ -20,8 +20,10 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
   std::fflush(file_);
   const std::size_t blocks = static_cast<std::size_t>(std::max(1L, expected_rows)) / kRowsPerBlock + 2;
   storage_.resize(blocks);
-  for (Block& b : storage_) b.reserve(block_values_);
-  current_ = &storage_[next_free_++];
+  // Value-initialized: the pages are touched here, not by the step loop (a first-touch page
+  // fault costs microseconds on a virtual machine).
+  for (Block& b : storage_) b.values.reset(new double[block_values_]());
+  take_free_block();
   text_.resize(block_values_ * 32 + kRowsPerBlock);
   thread_ = std::thread(&CsvWriter::writer_loop, this);
 }
@@ -32,24 +34,33 @@ CsvWriter::~CsvWriter() {
 }
 
 void CsvWriter::end_row() {
-  if (current_->size() >= block_values_) hand_over();
+  if (cursor_ >= block_end_) hand_over();
 }
 
-void CsvWriter::hand_over() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  if (current_->empty()) return;
-  queue_.push_back(current_);
+// Called with mutex_ held (or before the writer thread exists).
+void CsvWriter::take_free_block() {
   if (next_free_ < storage_.size()) {
     current_ = &storage_[next_free_++];
   } else if (!written_.empty()) {
     current_ = written_.back();
     written_.pop_back();
-    current_->clear();
   } else {
-    storage_.emplace_back();  // deque-like growth only when the writer lags far behind
-    storage_.back().reserve(block_values_);
+    storage_.emplace_back();  // grows only when the writer lags far behind
+    storage_.back().values.reset(new double[block_values_]());
     current_ = &storage_.back();
   }
+  current_->count = 0;
+  cursor_ = current_->values.get();
+  block_end_ = cursor_ + block_values_;
+}
+
+void CsvWriter::hand_over() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const std::size_t count = static_cast<std::size_t>(cursor_ - current_->values.get());
+  if (count == 0) return;
+  current_->count = count;
+  queue_.push_back(current_);
+  take_free_block();
   lock.unlock();
   wake_writer_.notify_one();
 }
@@ -92,8 +103,8 @@ void CsvWriter::writer_loop() {
 void CsvWriter::write_block(const Block& block) {
   char* out = text_.data();
   char* const end = text_.data() + text_.size();
-  for (std::size_t i = 0; i < block.size(); ++i) {
-    out = std::to_chars(out, end, block[i]).ptr;
+  for (std::size_t i = 0; i < block.count; ++i) {
+    out = std::to_chars(out, end, block.values[i]).ptr;
     *out++ = (i + 1) % columns_ == 0 ? '\n' : ',';
   }
   const std::size_t bytes = static_cast<std::size_t>(out - text_.data());

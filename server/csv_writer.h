@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -25,7 +26,7 @@ class CsvWriter {
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
 
-  void add(double value) { current_->push_back(value); }  ///< next value of the current row
+  void add(double value) { *cursor_++ = value; }  ///< next value of the current row
   void end_row();     ///< ends the row; hands the block over when it is full
   void hand_over();   ///< gives the rows so far to the writer thread (non-blocking)
   void finish();      ///< hands over, waits until everything is written and flushed
@@ -33,17 +34,25 @@ class CsvWriter {
   std::string error() const;
 
  private:
-  using Block = std::vector<double>;
+  struct Block {
+    std::unique_ptr<double[]> values;
+    std::size_t count = 0;           // set when handed over
+  };
   void writer_loop();
   void write_block(const Block& block);
+  void take_free_block();
 
-  std::FILE* file_ = nullptr;
+  // Touched by the step loop on every value: a cache line of its own, so the writer
+  // thread's reads never bounce it between cores.
+  alignas(64) double* cursor_ = nullptr;
+  double* block_end_ = nullptr;
+  Block* current_ = nullptr;
+  alignas(64) std::FILE* file_ = nullptr;
   std::string path_;
   std::size_t columns_ = 0;
   std::size_t block_values_ = 0;
-  std::vector<Block> storage_;       // preallocated blocks, reused in order
+  std::deque<Block> storage_;        // preallocated blocks (stable addresses), reused
   std::size_t next_free_ = 0;
-  Block* current_ = nullptr;
   std::deque<Block*> queue_;         // handed over, not yet written
   std::vector<Block*> written_;      // written, may be reused
   mutable std::mutex mutex_;
