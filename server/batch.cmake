@@ -1,0 +1,16 @@
+# hybridsim batch (server/batch.h): the batch driver, its worker, and the MPI communicator.
+# Included from server/CMakeLists.txt after the hybridsim target exists.
+add_library(server_batch ${CMAKE_CURRENT_LIST_DIR}/batch.cc ${CMAKE_CURRENT_LIST_DIR}/batch_mpi.cc)
+target_link_libraries(server_batch PUBLIC server)
+find_package(MPI COMPONENTS CXX)
+if(MPI_CXX_FOUND)
+  target_link_libraries(server_batch PRIVATE MPI::MPI_CXX)
+  target_compile_definitions(server_batch PRIVATE HYBRIDSIM_BATCH_MPI)
+  set(HYBRIDSIM_MPIEXEC "${MPIEXEC_EXECUTABLE}" CACHE INTERNAL "mpirun for the batch tests")
+else()
+  message(STATUS "MPI not found: hybridsim batch --mpi disabled")
+  set(HYBRIDSIM_MPIEXEC "" CACHE INTERNAL "mpirun for the batch tests")
+endif()
+if(TARGET hybridsim)
+  target_link_libraries(hybridsim PRIVATE server_batch)
+endif()
