@@ -57,6 +57,7 @@ struct BatchOptions {
   bool mpi = false;              ///< divide the records among MPI ranks, gather on rank 0
   bool slurm_task = false;       ///< run the record SLURM_ARRAY_TASK_ID only (merge later)
   bool bench = false;            ///< time the set with 1 and 2 jobs, print records/s
+  int bench_repeat = 3;          ///< alternating passes of the benchmark
   bool list = false;             ///< print the record set and exit
   bool retry_failed = false;     ///< redo finished failed runs (the old folder is kept aside)
   bool shared_netns = false;     ///< test aid: all runs in ONE private namespace

@@ -33,6 +33,7 @@ void add_batch_commands(CLI::App& app) {
   batch->add_flag("--slurm-task", o->slurm_task,
                   "run only record SLURM_ARRAY_TASK_ID (0-based) of the set; then 'hybridsim batch merge --out DIR'");
   batch->add_flag("--bench", o->bench, "time the set with 1 and 2 jobs (in OUT/bench/), print records/s and efficiency");
+  batch->add_option("--bench-repeat", o->bench_repeat, "alternating passes of --bench (best and median reported)");
   batch->add_flag("--list", o->list, "print the record set (index label scale path) and exit");
   batch->add_flag("--retry-failed", o->retry_failed,
                   "redo finished failed runs (the old folder is kept as runs/<label>.failed-<n>)");
