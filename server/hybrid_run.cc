@@ -2,6 +2,8 @@
 
 #include "common/strict_yaml.h"
 #include "damper/brfd_config.h"
+#include "damper/physical/realtime.h"
+#include "damper/physical/run_key.h"
 #include "server/csv_writer.h"
 #include "server/process.h"
 #include "structure/cr_integrator.h"
@@ -42,6 +44,32 @@ nlohmann::json to_json(const Eigen::VectorXd& v) {
 
 std::string make_run_id(const std::string& name) {
   return name + "-" + std::to_string(messages::now_utime()) + "-" + std::to_string(getpid());
+}
+
+/// Physical mode: adds the substructure's tracking indicators and safety record to
+/// summary.json and prints them.
+void report_physical(const fs::path& out, const std::string& summary_path, bool quiet) {
+  try {
+    nlohmann::json summary, tracking, safety;
+    std::ifstream(summary_path) >> summary;
+    if (fs::exists(out / "tracking.json")) std::ifstream(out / "tracking.json") >> tracking;
+    if (fs::exists(out / "safety.json")) std::ifstream(out / "safety.json") >> safety;
+    summary["physical"] = {{"tracking", tracking}, {"safety", safety}};
+    std::ofstream(summary_path) << std::setw(2) << summary << "\n";
+    if (!tracking.is_null() && !quiet) {
+      std::cout << std::setprecision(4) << "tracking: delay " << tracking.value("delay_ms", 0.0) << " ms, NRMS error "
+                << tracking.value("nrms_error_pct", 0.0) << " %, peak error " << tracking.value("peak_error_in", 0.0)
+                << " in (ATS " << (tracking["ats"].value("enabled", false) ? "on" : "off") << ", a1/a0 = "
+                << tracking["ats"].value("equivalent_delay_ms", 0.0) << " ms)\n";
+    }
+    if (!safety.is_null() && !quiet) {
+      std::cout << "safety: " << safety.value("status", std::string("?"))
+                << (safety.value("reason", std::string()).empty() ? "" : " (" + safety.value("reason", std::string()) + ")")
+                << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: warning: cannot report the physical run's tracking: " << e.what() << "\n";
+  }
 }
 
 }  // namespace
@@ -218,7 +246,27 @@ ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_
   std::vector<std::string> args{"--model-config", model_path, "--url", config.transport.url,
                                 "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id};
   if (config.transport.lab_network) args.push_back("--lab-network");
+  if (config.damper.mode == "physical") {
+    const std::string physical_path = (fs::path(out_dir) / "physical.yaml").string();
+    std::ofstream(physical_path) << "# rig block of the run config, for brfd-substructure --mode physical\n"
+                                 << damper::physical::physical_settings_to_yaml(config.rig);
+    args.insert(args.end(), {"--mode", "physical", "--physical-config", physical_path, "--key-file",
+                             physical_key_path(config, out_dir), "--results-dir", out_dir});
+  }
   return ChildProcess(sibling_executable(config.damper.executable), args, log_path);
+}
+
+std::string physical_key_path(const RunConfig& config, const std::string& out_dir) {
+  return config.rig.rig.key_file.empty() ? (fs::path(out_dir) / "run.key").string() : config.rig.rig.key_file;
+}
+
+ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
+                       const std::string& log_path) {
+  std::vector<std::string> args{"--config", config.rig.rig.config, "--url", config.transport.url,
+                                "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id,
+                                "--key-file", physical_key_path(config, out_dir), "--log-dir", out_dir};
+  if (config.transport.lab_network) args.push_back("--lab-network");
+  return ChildProcess(sibling_executable(config.rig.rig.executable), args, log_path);
 }
 
 int run_command(const std::string& config_path, const std::string& output_dir_override, bool quiet) {
@@ -239,6 +287,29 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     eff << run_config_to_yaml(config);
   }
   const std::string run_id = make_run_id(config.name);
+  const bool physical = config.damper.mode == "physical";
+  const bool local_rig = physical && config.rig.rig.launch == "local" && config.transport.kind == "lcm";
+  if (local_rig) {
+    // Check the emulator's config before anything runs, and give the run its own HMAC key.
+    const std::string check_log = (out / "rig.log").string();
+    fs::remove(check_log);
+    ChildProcess check(sibling_executable(config.rig.rig.executable), {"--config", config.rig.rig.config, "--check-config"},
+                       check_log);
+    if (check.wait_or_kill(10.0) != 0) {
+      std::ifstream f(check_log);
+      std::cerr << "hybridsim run: rig emulator config " << config.rig.rig.config << " is not usable:\n" << f.rdbuf();
+      return 2;
+    }
+    fs::remove(check_log);
+    if (config.rig.rig.key_file.empty()) {
+      try {
+        damper::physical::write_key_file(physical_key_path(config, out.string()), damper::physical::generate_run_key());
+      } catch (const std::exception& e) {
+        std::cerr << "hybridsim run: " << e.what() << "\n";
+        return 2;
+      }
+    }
+  }
 
   RunSummary summary;
   try {
@@ -256,17 +327,26 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
       link.step_timeout_s = config.transport.step_timeout_s;
       link.start_timeout_s = config.transport.start_timeout_s;
       if (config.transport.write_lcm_log) link.log_path = (out / "run.lcmlog").string();
+      // Physical: the step loop is part of the real-time loop with the rig (below the
+      // substructure's priority); before LCM starts its receive thread, which inherits it.
+      if (physical) damper::physical::enter_realtime(std::max(0, config.rig.realtime_priority - 10), "hybridsim");
       LcmSubstructure sub(link);
-      ChildProcess child;
+      ChildProcess rig, child;
+      if (local_rig) rig = spawn_rig(config, out.string(), run_id, (out / "rig.log").string());
       if (config.damper.launch == "spawn") {
         child = spawn_substructure(config, out.string(), run_id, (out / "substructure.log").string());
       }
       summary = run_hybrid(config, sub, run_id);
       if (config.damper.launch == "spawn") {
-        const int code = child.wait_or_kill(2.0);
+        // Physical: the substructure first ramps the rig out to its safe state.
+        const int code = child.wait_or_kill(physical ? 10.0 : 2.0);
         if (code != 0 && summary.status == "ok") {
           std::cerr << "hybridsim run: warning: substructure exited with code " << code << "\n";
         }
+      }
+      if (local_rig) {
+        const int code = rig.wait_or_kill(5.0);
+        if (code != 0) std::cerr << "hybridsim run: note: brfd-rig exited with code " << code << " (see rig.log)\n";
       }
     }
   } catch (const std::exception& e) {
@@ -275,6 +355,7 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
   }
   write_summary_json(summary, config, (out / "summary.json").string());
   if (!quiet) std::cout << format_summary(summary);
+  if (physical) report_physical(out, (out / "summary.json").string(), quiet);
   std::cout << "results: " << fs::weakly_canonical(fs::absolute(out)).string() << "\n";
   if (summary.status != "ok") {
     std::cerr << "hybridsim run: run failed: " << summary.error << "\n";

@@ -56,10 +56,20 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
                 bool quiet);
 
 /// Writes `damper-model.yaml` into `out_dir` and starts the substructure process of the
-/// config on it (virtual mode), with the config's URL and channel prefix. Child output goes
-/// to `log_path`.
+/// config on it, with the config's URL and channel prefix. Child output goes to `log_path`.
+/// Physical mode also writes `physical.yaml` (the rig block) and passes --mode physical, the
+/// key file (physical_key_path) and the results folder.
 ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
                                 const std::string& run_id, const std::string& log_path);
+
+/// Physical mode: the HMAC key file of the run's actuator commands: rig.key_file if the config
+/// gives one, else <out_dir>/run.key (written by run_command for a local rig).
+std::string physical_key_path(const RunConfig& config, const std::string& out_dir);
+
+/// Physical mode with `rig: launch: local`: starts brfd-rig (the lab-controller emulator) with
+/// the config's rig.config, URL, channel prefix, run id and key; its logs go to out_dir.
+ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
+                       const std::string& log_path);
 
 /// Writes summary.json.
 void write_summary_json(const RunSummary& summary, const RunConfig& config, const std::string& path);

@@ -3,6 +3,7 @@
 #include "common/strict_yaml.h"
 #include "damper/brfd_config.h"
 
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -20,7 +21,7 @@ std::string resolve(const std::string& base_file, const std::string& path) {
 
 RunConfig load_run_config(const std::string& path) {
   const common::YamlSection top = common::YamlSection::load_file(path);
-  top.allow_only({"run", "record", "building", "damper", "transport", "output"});
+  top.allow_only({"run", "record", "building", "damper", "transport", "output", "rig"});
   RunConfig c;
   c.source_file = path;
 
@@ -69,6 +70,18 @@ RunConfig load_run_config(const std::string& path) {
   tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
   tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
 
+  // Physical mode (docs/physical.md): the rig block; absent = defaults (local emulator).
+  c.rig.rig.config = resolve(path, c.rig.rig.config);
+  if (top.has("rig")) c.rig = damper::physical::physical_settings_from_yaml(top.section("rig"));
+  if (c.damper.mode == "physical") {
+    if (tr.kind != "lcm") t.fail("kind", "damper.mode physical needs transport.kind lcm (the rig is another process)");
+    if (std::abs(c.dt_s * c.rig.controller_rate_hz - 1.0) > 1e-9)
+      run.fail("dt_s", "damper.mode physical sends one actuator command per step: dt_s must be 1 / "
+                       "rig.controller_rate_hz (" + std::to_string(1.0 / c.rig.controller_rate_hz) + " s)");
+    if (c.rig.rig.launch == "local" && !fs::exists(c.rig.rig.config))
+      throw common::ConfigError(path + ": rig.config: no such rig emulator config: " + c.rig.rig.config);
+  }
+
   if (top.has("output")) {
     const common::YamlSection o = top.section("output");
     o.allow_only({"dir", "flush_every_steps", "every_n_steps"});
@@ -108,6 +121,11 @@ std::string run_config_to_yaml(const RunConfig& c) {
     << "output:\n  dir: " << fs::absolute(c.output.dir).string()
     << "\n  flush_every_steps: " << c.output.flush_every_steps
     << "\n  every_n_steps: " << c.output.every_n_steps << "\n";
+  if (c.damper.mode == "physical") {
+    o << "rig:\n";
+    std::istringstream r(damper::physical::physical_settings_to_yaml(c.rig));
+    for (std::string line; std::getline(r, line);) o << "  " << line << "\n";
+  }
   return o.str();
 }
 

@@ -5,6 +5,7 @@
 /// relative to the config file's folder.
 
 #include "damper/brfd_model.h"
+#include "damper/physical/physical_config.h"
 #include "structure/shear_building.h"
 
 #include <string>
@@ -52,6 +53,9 @@ struct RunConfig {
   structure::BuildingParams building;
   DamperSettings damper;
   damper::BrfdParams damper_model;   ///< loaded from damper.model_config
+  /// `rig:` block, used when damper.mode is physical (docs/physical.md); optional, defaults
+  /// = a local brfd-rig with rig-default.yaml beside the run config.
+  damper::physical::PhysicalSettings rig;
   TransportSettings transport;
   OutputSettings output;
 };

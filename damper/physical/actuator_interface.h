@@ -1,0 +1,73 @@
+#pragma once
+/// @file actuator_interface.h
+/// The physical substructure's link to the lab controller (or brfd-rig): actuator commands
+/// out on <prefix>ACTUATOR_COMMAND, sensor frames in on <prefix>SENSOR_FRAME
+/// (docs/physical.md, "Lab-side protocol").
+///
+/// send() is the only way a command leaves this process, and it runs the safety layer
+/// first: a setpoint that fails a limit is never encoded, signed or published.
+
+#include "damper/physical/command_auth.h"
+#include "damper/physical/safety.h"
+#include "hybrid_lcm/actuator_command_t.hpp"
+#include "hybrid_lcm/sensor_frame_t.hpp"
+#include "messages/lcm_bus.h"
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace damper::physical {
+
+class ActuatorInterface {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Subscribes to the sensor frames of `channels` on `lcm`.
+  ActuatorInterface(lcm::LCM& lcm, const messages::Channels& channels, const RunKey& key, SafetyLayer& safety);
+  ActuatorInterface(const ActuatorInterface&) = delete;
+  ActuatorInterface& operator=(const ActuatorInterface&) = delete;
+
+  /// Commands carry this run id; frames of other runs are ignored. Frames with an empty run
+  /// id (a controller that has accepted no command yet) are taken until the first frame with
+  /// our run id arrives.
+  void set_run_id(const std::string& run_id);
+
+  /// Safety check, then sign and publish with the next sequence number. Returns false (and
+  /// publishes nothing) when the safety layer refuses the setpoint; `why` says which limit.
+  bool send(const ActuatorSetpoint& sp, int8_t mode, std::string& why);
+
+  int64_t last_sequence() const { return sequence_; }
+  long commands_sent() const { return sent_; }
+
+  /// Sensor frames received so far, the newest one and when it arrived.
+  long frames_received() const { return frames_; }
+  const hybrid_lcm::sensor_frame_t& latest_frame() const { return frame_; }
+  Clock::time_point last_frame_time() const { return last_frame_time_; }
+  /// Longest time between two consecutive frames since reset_frame_gap() (s).
+  double max_frame_gap_s() const { return max_gap_s_; }
+  void reset_frame_gap() { max_gap_s_ = 0.0; }
+  /// Frames that could not be decoded (reported on stderr naming the channel).
+  long bad_frames() const { return bad_frames_; }
+
+ private:
+  void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+
+  lcm::LCM& lcm_;
+  messages::Channels channels_;
+  CommandSigner signer_;
+  SafetyLayer& safety_;
+  hybrid_lcm::actuator_command_t command_;
+  std::vector<uint8_t> buffer_;
+  int64_t sequence_ = 0;
+  long sent_ = 0;
+  hybrid_lcm::sensor_frame_t frame_, scratch_;
+  long frames_ = 0;
+  long bad_frames_ = 0;
+  double max_gap_s_ = 0.0;
+  bool bound_ = false;
+  Clock::time_point last_frame_time_{};
+};
+
+}  // namespace damper::physical
