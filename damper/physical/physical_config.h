@@ -41,7 +41,7 @@ struct SafetyLimits {
   double actuator_max_in = 1.20;       ///<   [actuator_min_in, actuator_max_in]
   double actuator_force_lb = 4000.0;   ///< |measured electric actuator force| (their safety limit)
   double drift_in = 1.5;               ///< |target drum displacement (drift) from the server|
-  double tracking_error_in = 0.3;      ///< |measured - target drum displacement|
+  double tracking_error_in = 0.3;      ///< |measured - target drum displacement| (target blended in over ramp_in_s)
 };
 
 struct Watchdogs {

@@ -402,6 +402,9 @@ class PhysicalNode {
     const double r = ramp_factor(static_cast<double>(steps_done_) * period_, s_.ramp.ramp_in_s);
     ActuatorSetpoint sp = start_;
     sp.drum_in = start_.drum_in + r * (current_compensated_ - start_.drum_in);
+    // What the actuator is meant to do (the tracking check's reference): the target, blended
+    // in over the ramp-in like the command.
+    current_intended_ = start_.drum_in + r * (current_target_ - start_.drum_in);
     if (!act_.send(sp, actuator_command_t::MODE_RUN, why_)) {  // refused: never published
       trip(why_, now);
       return;
@@ -427,7 +430,7 @@ class PhysicalNode {
       recorder_->add_row(row);
     }
     ++steps_done_;
-    if (!safety_.tracking_ok(current_target_, measured, why_)) {
+    if (!safety_.tracking_ok(current_intended_, measured, why_)) {
       trip(why_, now);
       return;
     }
@@ -568,6 +571,7 @@ class PhysicalNode {
   bool has_pending_ = false, step_open_ = false;
   int64_t current_step_ = -1, last_answered_step_ = -1;
   double current_sim_time_ = 0, current_target_ = 0, current_compensated_ = 0, current_command_ = 0;
+  double current_intended_ = 0;
   long frames_at_publish_ = 0, frames_checked_ = 0;
   long steps_done_ = 0, late_frames_ = 0;
   int32_t rejected_seen_ = 0;

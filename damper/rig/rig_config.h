@@ -53,7 +53,8 @@ struct BacklashSettings {
 /// Residual static force: the bands keep tension when the drum stops. After the drum has been
 /// at rest (|v| < rest_velocity) for rest_time_s, the force settles (time constant) to
 /// `fraction` of the kinetic friction of the last direction of motion, and stays there; when
-/// the drum moves again the residual is released over release_travel_in. The rig also starts
+/// the drum moves again the residual is released over release_travel_in (and only a motion of
+/// at least that travel sets a new direction for the next lock). The rig also starts
 /// with `initial_kip` locked in the bands (from the previous test).
 struct ResidualForceSettings {
   bool enabled = true;

@@ -124,8 +124,9 @@ double RigSimulator::residual(double x, double v, double dynamic_force) {
       release_from_kip_ = residual_kip_;
     }
     rest_time_ = 0.0;
-    last_motion_sign_ = sign(v);
     motion_since_rest_ += speed * dt_;
+    // Only a real stroke re-tensions the bands (not sensor-noise-sized positioning moves).
+    if (motion_since_rest_ >= r.release_travel_in) last_motion_sign_ = sign(v);
     residual_kip_ = release_from_kip_ * std::max(0.0, 1.0 - motion_since_rest_ / r.release_travel_in);
   } else {
     rest_time_ += dt_;

@@ -125,6 +125,11 @@ TEST(RigSimulator, ResidualStaticForceStaysAfterMotionStopsAndIsThereAtTheStart)
   std::printf("force 1 s after the drum stopped: %.3f kip (fraction x Fc = %.3f kip)\n", locked, expected);
   EXPECT_NEAR(locked, expected, 0.05);
 
+  // A noise-sized move (a positioning step of 0.3 mil) does not re-tension the bands.
+  RigSimulator small(c);
+  for (int k = 0; k < 1024; ++k) small.step({0.0003, c.initial.actuator1_in, c.initial.actuator2_in});  // 0.3 in/s for a tick
+  EXPECT_NEAR(small.truth().friction_kip, 0.4, 0.05);
+
   c.residual_force.enabled = false;
   RigSimulator plain(c);
   plain.step({0.0, c.initial.actuator1_in, c.initial.actuator2_in});
