@@ -6,7 +6,7 @@
 namespace damper {
 
 BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
-  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity"});
+  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity", "effects"});
   BrfdParams p;
   p.kind = damper_kind_from_string(s.get_choice("model", {"passive_lugre", "semiactive"}));
   const common::YamlSection l = s.section("lugre");
@@ -60,6 +60,8 @@ BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
       if (!(c.bwd_kip[i] > 0.0)) b.fail("bwd_kip", "values must be > 0");
     }
   }
+  // Optional physical extensions found by `hybridsim diagnose` (damper/effects.h).
+  if (s.has("effects")) p.effects = effects_from_yaml(s.section("effects"));
   return p;
 }
 
@@ -104,6 +106,7 @@ std::string brfd_params_to_yaml(const BrfdParams& p) {
     o << "  bwd_kip: ";
     list(c.bwd_kip);
   }
+  o << effects_to_yaml(p.effects);
   return o.str();
 }
 

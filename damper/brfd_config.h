@@ -10,7 +10,8 @@
 
 namespace damper {
 
-/// Reads a damper block: keys `model`, `lugre`, `semiactive` (see configs/brfd-default.yaml).
+/// Reads a damper block: keys `model`, `lugre`, `semiactive`, optional `b_of_velocity` and
+/// `effects` (damper/effects.h; see configs/brfd-default.yaml).
 BrfdParams brfd_params_from_yaml(const common::YamlSection& section);
 /// Loads a damper config file whose top level is a damper block.
 BrfdParams load_brfd_params(const std::string& path);

@@ -8,6 +8,8 @@
 /// the virtual substructure, `hybridsim damper predict`, `diagnose` and the SUNDIALS
 /// monolithic reference (bristle_rate() is the right-hand side of Eq. 1).
 
+#include "damper/effects.h"
+
 #include <array>
 #include <string>
 #include <vector>
@@ -59,9 +61,11 @@ struct BrfdParams {
   LugreParams lugre;
   SemiActiveParams semiactive;
   /// b = F(v), optional; when set it replaces fc_fwd_kip / fc_bwd_kip as b in both models.
-  /// Further effects (backlash after reversal, residual static force) are a later issue: they
-  /// belong here as optional members, read in kinetic_friction_kip()/force_kip().
   KineticFrictionCurve b_of_velocity;
+  /// Physical extensions of the model (damper/effects.h: backlash, residual static force,
+  /// actuator lag, asymmetry, velocity dependence, pre-tension), all absent by default. Found
+  /// by `hybridsim diagnose` (docs/diagnose.md); config key `effects:`.
+  ModelEffects effects;
 };
 
 /// Inputs at one instant. Drum displacement/velocity in in and in/s; actuator positions in in.
@@ -81,28 +85,63 @@ class BrfdModel {
   /// friction force (kip) at the end of the step, Eq. (3). The bristle ODE, Eq. (1), is
   /// linear in z for constant v, so the step uses its exact exponential solution:
   /// unconditionally stable for any σ0 (the bristle state is stiff at 1024 Hz).
+  /// With effects (params().effects) the ODE stays piecewise linear in z (backlash dead zone,
+  /// asymmetric stiffness, rest relaxation): the step chains the exact solutions of the pieces.
+  /// The actuator lag and the low-passed speed of residual_static are advanced here too.
   double step(const DamperInput& in, double dt_s);
 
   /// b of Eq. (4), kip: fc_fwd_kip / fc_bwd_kip by the sign of v, or b_of_velocity if set.
   double base_kinetic_friction_kip(double v_in_per_s) const;
   /// Kinetic friction Fc (kip, magnitude): the constant b per direction for passive LuGre,
-  /// Eq. (4) of the paper for the semi-active model.
+  /// Eq. (4) of the paper for the semi-active model (with effects: lagged actuator positions,
+  /// pre-tension and asymmetry factors).
   double kinetic_friction_kip(const DamperInput& in) const;
-  /// Stribeck function g(v), Eqs. (2)/(5), kip.
+  /// Stribeck function g(v), Eqs. (2)/(5), kip (with effects: velocity effect).
   double stribeck_kip(const DamperInput& in) const;
-  /// dz/dt of Eq. (1), in/s, for bristle state z (in).
+  /// dz/dt of Eq. (1), in/s, for bristle state z (in). With effects it includes the backlash
+  /// dead zone, asymmetric stiffness and the rest relaxation; the actuator lag and the
+  /// low-passed speed are taken from the model's state (advanced only by step()).
   double bristle_rate(double z_in, const DamperInput& in) const;
-  /// Friction force, Eq. (3), kip, for bristle state z.
+  /// Friction force, Eq. (3), kip, for bristle state z (with effects: F = S(z) + σ1 dz/dt + σ2 v).
   double force_kip(double z_in, const DamperInput& in) const;
+  /// Band spring force S(z), kip: σ0 z without effects (Eq. 3's first term).
+  double spring_force_kip(double z_in) const;
+  /// Bristle state whose spring force is f_kip (inverse of spring_force_kip; f = 0 gives z = 0).
+  double bristle_for_force(double f_kip) const;
+  /// Initial bristle state for a measured force f_kip at the start of a record: bristle_for_force,
+  /// except with backlash, where a force within 10 % of the smaller Fc places the state inside the
+  /// slack in proportion (a band at rest with almost no force need not be taut).
+  double initial_bristle_for_force(double f_kip) const;
 
   double bristle_in() const { return z_in_; }
   void set_bristle_in(double z_in) { z_in_ = z_in; }
-  void reset() { z_in_ = 0.0; }
+  /// z = 0 and the effect states back to their initial values.
+  void reset();
   const BrfdParams& params() const { return params_; }
 
  private:
+  struct Levels {
+    double fc, fs;   // kinetic and static friction (kip, magnitudes) of one direction
+    double tension;  // N_λ of the pretension effect (1 without it)
+  };
+  Levels levels(const DamperInput& in, bool forward) const;
+  struct Frame {
+    double g = 1.0;        // Stribeck function g(v), kip
+    double tension = 1.0;  // N_λ
+    double relax = 0.0;    // w / τ_r of residual_static, 1/s
+    double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
+  };
+  Frame frame(const DamperInput& in) const;
+  double rate_in_frame(double z, double v, const Frame& f) const;
+  double force_in_frame(double z, double v, const Frame& f) const;
+  double stiffness(bool positive_z) const;
+  double step_with_effects(const DamperInput& in, double dt_s);
+
   BrfdParams params_;
+  bool has_effects_ = false;
   double z_in_ = 0.0;
+  double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag
+  double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
 };
 
 /// Name of a DamperKind as used in configs ("passive_lugre", "semiactive").

@@ -27,8 +27,9 @@ std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& t
   BrfdModel model(params);
   const LugreParams& g = params.lugre;
   if (options.initial_bristle_from_force) {
-    const double z_max = std::max(g.fs_fwd_kip, g.fs_bwd_kip) / g.sigma0_kip_per_in;
-    model.set_bristle_in(std::clamp(test.force_kip[begin] / g.sigma0_kip_per_in, -z_max, z_max));
+    // z0 with spring force F0 (= F0/σ0 without effects; backlash and asymmetry change the spring).
+    const double f_max = std::max(g.fs_fwd_kip, g.fs_bwd_kip);
+    model.set_bristle_in(model.initial_bristle_for_force(std::clamp(test.force_kip[begin], -f_max, f_max)));
   }
   std::vector<double> f(end - begin);
   f[0] = model.force_kip(model.bristle_in(), input_at(test, begin, params));
