@@ -166,7 +166,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
 }
 
 double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
-  double rate = v - std::abs(v) * f.tension * spring_force_kip(z) / f.g;
+  const double y = f.tension * spring_force_kip(z) / f.g;  // force ratio
+  const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
+  const double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
+  double rate = v - std::abs(v) * shaped;
   if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
   return rate;
 }
@@ -220,11 +223,27 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const double target_pos = f.target_pos, target_neg = f.target_neg;
   if (v == 0.0 && relax == 0.0) return force_in_frame(z_in_, v, f);
 
-  // dz/dt = c - a z on each piece: z > δ (band + loaded), 0 <= z <= δ, -δ <= z < 0 (slack),
-  // z < -δ (band - loaded). Exact solution per piece, chained at the boundaries ±δ and 0.
   const double slack = e.backlash ? e.backlash->slack_in : 0.0;
   const double k = speed / f.g;  // |v| / g(v)
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
+  if (e.transition_shape && e.transition_shape->exponent != 1.0) {
+    // Nonlinear bristle law: RK4 sub-steps, enough to keep h × (largest rate constant) <= 0.25.
+    const double alpha = e.transition_shape->exponent;
+    const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
+    const double stiff = k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 + relax;
+    const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
+    const double h = dt_s / n;
+    double z = z_in_;
+    for (int i = 0; i < n; ++i) {
+      const double k1 = rate_in_frame(z, v, f), k2 = rate_in_frame(z + 0.5 * h * k1, v, f);
+      const double k3 = rate_in_frame(z + 0.5 * h * k2, v, f), k4 = rate_in_frame(z + h * k3, v, f);
+      z += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    z_in_ = z;
+    return force_in_frame(z_in_, v, f);
+  }
+  // dz/dt = c - a z on each piece: z > δ (band + loaded), 0 <= z <= δ, -δ <= z < 0 (slack),
+  // z < -δ (band - loaded). Exact solution per piece, chained at the boundaries ±δ and 0.
   constexpr double inf = std::numeric_limits<double>::infinity();
   // piece 0: z < -δ, 1: -δ <= z < 0, 2: 0 <= z <= δ, 3: z > δ (pieces 1, 2 empty when δ = 0).
   auto piece_of = [slack](double z) { return z < -slack ? 0 : z < 0.0 ? 1 : z <= slack ? 2 : 3; };

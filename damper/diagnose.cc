@@ -441,6 +441,13 @@ DiagnoseResult run_diagnose(const DiagnoseOptions& o) {
     Record r;
     r.test = read_measured_record(path, o.read);
     for (const std::string& n : r.test.notes) log(n);
+    if (r.test.has_actuator_positions && o.actuator_smoothing_s > 0.0) {
+      const int hw = static_cast<int>(std::lround(0.5 * o.actuator_smoothing_s / r.test.dt_s));
+      if (hw > 0) {
+        r.test.actuator1_in = centered_moving_average(r.test.actuator1_in, hw);
+        r.test.actuator2_in = centered_moving_average(r.test.actuator2_in, hw);
+      }
+    }
     r.seg = segment_record(r.test, o.segmentation);
     BrfdParams base = model;
     if (r.test.has_actuator_positions) {

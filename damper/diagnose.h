@@ -42,6 +42,10 @@ struct DiagnoseOptions {
   BaseSource base = BaseSource::identify;
   std::vector<std::string> candidates;   ///< --effects: subset of the library (empty = all)
   SegmentationOptions segmentation;
+  /// The actuator position signals of the semi-active files are sample-and-hold staircases
+  /// (updated every 10-20 ms); they are smoothed by a centred moving average over this window
+  /// before use, s (0: as measured).
+  double actuator_smoothing_s = 0.02;
   /// Budget of the first identification of the base on each passive window (window overwritten).
   IdentificationOptions base_identification;
   /// Local LN_BOBYQA re-identification of each record's base with the trial effects, run at every

@@ -191,7 +191,7 @@ std::vector<std::string> format_windows(const std::vector<ResidualWindow>& w, do
 
 std::vector<std::string> format_candidate_table(const std::vector<CandidateScore>& scores) {
   std::vector<std::string> out;
-  out.push_back("  " + pad("effect", 16) + pad("params", 58) + lpad("train RMSE", 11) + lpad("held-out", 10) +
+  out.push_back("  " + pad("effect", 18) + pad("params", 58) + lpad("train RMSE", 11) + lpad("held-out", 10) +
                 lpad("change", 9) + lpad("dBIC", 9) + "  verdict");
   std::size_t best = 0;
   for (std::size_t k = 1; k < scores.size(); ++k)
@@ -201,7 +201,7 @@ std::vector<std::string> format_candidate_table(const std::vector<CandidateScore
     std::string params;
     for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? " " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 3);
     const std::string verdict = k == best ? (c.accepted ? "winner, added" : "best, not material") : "";
-    out.push_back("  " + pad(c.effect, 16) + pad(params, 58) + lpad(fixed(c.train_rmse_kip, 4), 11) +
+    out.push_back("  " + pad(c.effect, 18) + pad(params, 58) + lpad(fixed(c.train_rmse_kip, 4), 11) +
                   lpad(fixed(c.heldout_rmse_kip, 4), 10) + lpad(fixed(-100.0 * c.heldout_gain, 1) + "%", 9) +
                   lpad(fixed(c.delta_bic, 1), 9) + "  " + verdict);
   }

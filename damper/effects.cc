@@ -18,7 +18,7 @@ std::string ModelEffects::names() const {
 
 ModelEffects effects_from_yaml(const common::YamlSection& s) {
   s.allow_only({"backlash", "residual_static", "actuator_lag", "asymmetry", "velocity", "pretension",
-                "self_energizing"});
+                "self_energizing", "transition_shape"});
   ModelEffects e;
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
@@ -69,6 +69,11 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
     e.self_energizing = x;
+  }
+  if (s.has("transition_shape")) {
+    const common::YamlSection t = s.section("transition_shape");
+    t.allow_only({"exponent"});
+    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 50.0)};
   }
   return e;
 }
@@ -192,6 +197,14 @@ std::vector<EffectSpec> build_library() {
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in};
       })));
+  lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
+      "transition_shape", "sharper stick-to-slip transition (Dahl exponent of the bristle law)",
+      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent (LuGre: exponent = 1)",
+      {{"exponent", 1.0, 12.0, 1.0, 3.0, true}}, &ModelEffects::transition_shape,
+      std::function<TransitionShapeEffect(const std::vector<double>&)>(
+          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0]}; }),
+      std::function<std::vector<double>(const TransitionShapeEffect&)>(
+          [](const TransitionShapeEffect& a) { return std::vector<double>{a.exponent}; })));
   return lib;
 }
 

@@ -34,6 +34,10 @@
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b): friction levels change with
 ///    the drum rotation (the rotating drum draws the bands taut): Fc, Fs × (1 + κ_dir d),
 ///    κ_f for v ≥ 0, κ_b for v < 0.
+///  - transition_shape (exponent = α): sharper stick-to-slip transition (Dahl's exponent). With
+///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
+///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation)
+///    Steady sliding is unchanged (|y| = 1). Stepped by RK4 sub-steps (the ODE is no longer linear).
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose.h) fits them on measured data.
@@ -85,6 +89,11 @@ struct SelfEnergizingEffect {
   double drum_bwd_per_in = 0.0;  ///< κ_b: same for v < 0
 };
 
+/// Shape of the stick-to-slip transition (see file comment).
+struct TransitionShapeEffect {
+  double exponent = 1.0;  ///< α >= 1 (1: LuGre)
+};
+
 /// The effects switched on in a model (all absent by default: the paper's model).
 struct ModelEffects {
   std::optional<BacklashEffect> backlash;
@@ -94,10 +103,11 @@ struct ModelEffects {
   std::optional<VelocityEffect> velocity;
   std::optional<PretensionEffect> pretension;
   std::optional<SelfEnergizingEffect> self_energizing;
+  std::optional<TransitionShapeEffect> transition_shape;
 
   bool empty() const {
     return !backlash && !residual_static && !actuator_lag && !asymmetry && !velocity && !pretension &&
-           !self_energizing;
+           !self_energizing && !transition_shape;
   }
   /// Names of the effects switched on, in library order ("" when none), comma separated.
   std::string names() const;
@@ -133,7 +143,7 @@ struct EffectSpec {
 };
 
 /// The library: backlash, residual_static, actuator_lag, asymmetry, velocity, pretension,
-/// self_energizing.
+/// self_energizing, transition_shape.
 const std::vector<EffectSpec>& effect_library();
 /// The spec named `name`; throws std::invalid_argument listing the known names.
 const EffectSpec& effect_spec(const std::string& name);

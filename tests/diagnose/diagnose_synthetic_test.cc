@@ -76,7 +76,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Hidden{"backlash", {0.05}}, Hidden{"residual_static", {0.4, 0.15}},
                       Hidden{"actuator_lag", {0.15}}, Hidden{"asymmetry", {0.15, 0.3}},
                       Hidden{"velocity", {1.0, 0.25}}, Hidden{"pretension", {1.0, 0.8}},
-                      Hidden{"self_energizing", {-0.2, 0.15}}),
+                      Hidden{"self_energizing", {-0.2, 0.15}}, Hidden{"transition_shape", {4.0}}),
     [](const ::testing::TestParamInfo<Hidden>& info) { return info.param.effect; });
 
 TEST(NoHiddenEffect, ReportsThatNothingSignificantIsMissing) {

@@ -46,6 +46,7 @@ ModelEffects all_effects() {
   e.velocity = VelocityEffect{1.5, 0.2};
   e.pretension = PretensionEffect{0.8, 0.7};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1};
+  e.transition_shape = TransitionShapeEffect{3.0};
   return e;
 }
 
@@ -93,6 +94,7 @@ TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
   p.effects = all_effects();
   p.effects.actuator_lag.reset();
   p.effects.residual_static.reset();
+  p.effects.transition_shape.reset();  // RK4 sub-steps: checked against RK4 below
   SyntheticOptions o;
   o.rate_hz = 256.0;
   const std::vector<double> one = run(p, o, 1);
@@ -102,8 +104,9 @@ TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
   EXPECT_LT(worst, 1e-7);
 }
 
-TEST(Effects, ExactStepMatchesRk4OfTheBristleRate) {
-  // Stateless effects: dz/dt = bristle_rate(z, in) integrated by RK4 with 400 substeps per sample.
+TEST(Effects, StepMatchesRk4OfTheBristleRate) {
+  // Stateless effects: dz/dt = bristle_rate(z, in) integrated by RK4 with 400 substeps per sample
+  // (transition_shape 1: the exact piecewise step; 3: the model's own RK4 sub-steps).
   BrfdParams p = synthetic_base();
   p.effects.backlash = BacklashEffect{0.05};
   p.effects.asymmetry = AsymmetryEffect{0.1, 0.3};
@@ -112,23 +115,26 @@ TEST(Effects, ExactStepMatchesRk4OfTheBristleRate) {
   p.effects.self_energizing = SelfEnergizingEffect{-0.15, 0.1};
   SyntheticOptions o;
   o.rate_hz = 256.0;
-  BrfdModel exact(p), rk(p);
-  const double dt = 1.0 / o.rate_hz;
-  const int n = static_cast<int>(o.motion_s * o.rate_hz);
-  double z = 0.0, worst = 0.0;
-  const int sub = 400;
-  for (int i = 1; i < n; ++i) {
-    const DamperInput in = synthetic_input(i * dt, o, p);
-    const double fe = exact.step(in, dt);
-    const double h = dt / sub;
-    for (int k = 0; k < sub; ++k) {
-      const double k1 = rk.bristle_rate(z, in), k2 = rk.bristle_rate(z + 0.5 * h * k1, in);
-      const double k3 = rk.bristle_rate(z + 0.5 * h * k2, in), k4 = rk.bristle_rate(z + h * k3, in);
-      z += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+  for (double alpha : {1.0, 3.0}) {
+    p.effects.transition_shape = TransitionShapeEffect{alpha};
+    BrfdModel exact(p), rk(p);
+    const double dt = 1.0 / o.rate_hz;
+    const int n = static_cast<int>(o.motion_s * o.rate_hz);
+    double z = 0.0, worst = 0.0;
+    const int sub = 400;
+    for (int i = 1; i < n; ++i) {
+      const DamperInput in = synthetic_input(i * dt, o, p);
+      const double fe = exact.step(in, dt);
+      const double h = dt / sub;
+      for (int k = 0; k < sub; ++k) {
+        const double k1 = rk.bristle_rate(z, in), k2 = rk.bristle_rate(z + 0.5 * h * k1, in);
+        const double k3 = rk.bristle_rate(z + 0.5 * h * k2, in), k4 = rk.bristle_rate(z + h * k3, in);
+        z += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+      }
+      worst = std::max(worst, std::abs(fe - rk.force_kip(z, in)));
     }
-    worst = std::max(worst, std::abs(fe - rk.force_kip(z, in)));
+    EXPECT_LT(worst, 2e-3) << "exponent " << alpha;  // kip; forces are several kip
   }
-  EXPECT_LT(worst, 2e-3);  // kip; forces are several kip
 }
 
 TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
@@ -180,7 +186,8 @@ TEST(Effects, ConfigBlockRoundTrips) {
   const std::string path = dir + "/with-effects.yaml";
   std::ofstream(path) << brfd_params_to_yaml(p);
   const BrfdParams q = load_brfd_params(path);
-  EXPECT_EQ(q.effects.names(), "backlash,residual_static,actuator_lag,asymmetry,velocity,pretension,self_energizing");
+  EXPECT_EQ(q.effects.names(),
+            "backlash,residual_static,actuator_lag,asymmetry,velocity,pretension,self_energizing,transition_shape");
   for (const EffectSpec& spec : effect_library()) {
     const std::vector<double> a = spec.get(p.effects), b = spec.get(q.effects);
     ASSERT_EQ(a.size(), b.size());
