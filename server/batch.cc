@@ -8,6 +8,7 @@
 #include "structure/shear_building.h"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <sys/file.h>
@@ -176,6 +177,9 @@ std::vector<BatchRecord> load_record_set(const std::string& spec) {
     if (set.empty())
       throw BatchInputError("records folder '" + spec + "' has no record files (*.AT2, *.at2, *.txt, *.csv)");
   } else {
+    if (lower(fs::path(spec).extension().string()) == ".at2")
+      throw BatchInputError("--records " + spec + " is a record, not a record list: give a list file (lines "
+                            "'path scale [label]') or the folder of the records");
     std::ifstream f(spec);
     if (!f) throw BatchInputError("cannot read record list '" + spec + "'");
     const fs::path base = fs::absolute(spec).parent_path();
@@ -596,7 +600,55 @@ void set_failed_aside(const std::string& out, const std::string& label) {
 struct DriverResult {
   int ran = 0;       // runs started in this call
   int skipped = 0;   // already finished
+  bool interrupted = false;  // SIGINT/SIGTERM: running runs stopped, the rest not started
 };
+
+volatile sig_atomic_t g_interrupted = 0;
+
+/// The signals that stop a batch.
+sigset_t stop_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGHUP);
+  return set;
+}
+
+/// Blocks the stop signals while a worker is forked and exec'ed. Between fork and exec the
+/// child still has the driver's handlers: a SIGTERM (its PR_SET_PDEATHSIG when the driver is
+/// killed) or a Ctrl-C arriving then would only set a flag in the child, which would run on
+/// as an orphan. Blocked, the signal stays pending through exec and the worker, which
+/// unblocks them first thing (unblock_stop_signals), dies of it.
+class StopSignalsBlocked {
+ public:
+  StopSignalsBlocked() {
+    const sigset_t set = stop_signals();
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~StopSignalsBlocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+
+ private:
+  sigset_t old_;
+};
+
+void unblock_stop_signals() {
+  const sigset_t set = stop_signals();
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+/// Ctrl-C or kill of a local batch: stop launching, stop the running workers (their
+/// .partial folders are redone on resume), write the summary of what is finished, and end
+/// with the final line. Not under MPI (mpirun handles signals for all ranks).
+void install_interrupt_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGHUP, &sa, nullptr);
+}
 
 /// Runs the records `mine` (indices into b.records) that are not finished yet, `jobs` at a
 /// time, one worker process each.
@@ -662,7 +714,10 @@ DriverResult run_records(const BatchOptions& o, const BatchSet& b, const std::ve
     auto slot = std::make_unique<Slot>();
     slot->index = i;
     slot->start = Clock::now();
-    slot->proc = ChildProcess(exe, args, (partial / "worker.log").string());
+    {
+      StopSignalsBlocked blocked;
+      slot->proc = ChildProcess(exe, args, (partial / "worker.log").string());
+    }
     running.push_back(std::move(slot));
     ++result.ran;
     progress.started();
@@ -692,6 +747,15 @@ DriverResult run_records(const BatchOptions& o, const BatchSet& b, const std::ve
   };
 
   while (next < todo.size() || !running.empty()) {
+    if (g_interrupted) {
+      for (auto& slot : running) {
+        if (slot->proc.pid() > 0) ::kill(slot->proc.pid(), SIGTERM);
+        slot->proc.wait_or_kill(3.0);
+      }
+      running.clear();
+      result.interrupted = true;
+      break;
+    }
     while (next < todo.size() && static_cast<int>(running.size()) < o.jobs) launch(todo[next++]);
     for (auto it = running.begin(); it != running.end();) {
       if (!(*it)->proc.running()) {
@@ -807,8 +871,10 @@ int run_batch(const BatchOptions& o, BatchComm& comm) {
   }
 
   const std::string prefix = comm.size() > 1 ? "rank " + std::to_string(comm.rank()) + ": " : "";
+  bool interrupted = false;
+  if (!o.mpi) install_interrupt_handlers();
   try {
-    run_records(o, b, mine, prefix);
+    interrupted = run_records(o, b, mine, prefix).interrupted;
   } catch (const std::exception& e) {
     setup_error = e.what();
     std::cerr << "hybridsim batch: " << prefix << setup_error << "\n";
@@ -845,7 +911,9 @@ int run_batch(const BatchOptions& o, BatchComm& comm) {
     c = count(results);
     if (c.not_run > 0) std::cout << "not run: " << c.not_run << " (run the batch again to finish them)\n";
   }
+  if (interrupted) std::cout << "interrupted: run the same command again to resume\n";
   print_final_line(c, std::chrono::duration<double>(Clock::now() - t0).count());
+  if (interrupted) return 130;
   if (!all_ran) return 2;
   return (c.failed == 0 && c.not_run == 0) ? 0 : 1;
 }
@@ -986,6 +1054,7 @@ int batch_merge_command(const std::string& out) {
 // the worker
 
 int batch_worker_command(const BatchWorkerOptions& w) {
+  unblock_stop_signals();  // blocked by the driver around fork/exec; a pending one kills us now
   const auto t0 = Clock::now();
   const fs::path partial = fs::path(w.runs_dir) / (w.label + ".partial");
   const fs::path final_path = fs::path(w.runs_dir) / w.label;

@@ -26,7 +26,7 @@ void add_batch_commands(CLI::App& app) {
                     "record list file (lines 'path scale [label]', # comments, paths relative to the file) "
                     "or a folder (every *.AT2, *.at2, *.txt, *.csv in it, scale 1)");
   batch->add_option("--out", o->out, "batch folder (runs/, summary.csv, plots); run again to resume");
-  batch->add_option("--jobs", o->jobs, "runs at a time (per MPI rank)")->check(CLI::PositiveNumber);
+  batch->add_option("--jobs", o->jobs, "runs at a time (per MPI rank), at least 1");
   batch->add_option("--duration", o->duration_s,
                     "simulated seconds per run, overriding record.duration_s of the config (-1: whole records)");
   batch->add_flag("--mpi", o->mpi, "divide the records among MPI ranks (mpirun -np N hybridsim batch --mpi ...)");

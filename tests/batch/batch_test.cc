@@ -4,6 +4,8 @@
 #include "hybrid_lcm/drift_command_t.hpp"
 #include "hybrid_lcm/force_feedback_t.hpp"
 #include "hybrid_lcm/heartbeat_t.hpp"
+#include "hybrid_lcm/run_control_t.hpp"
+#include "messages/lcm_bus.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -29,6 +31,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <atomic>
 
 namespace {
 
@@ -485,67 +488,197 @@ LogCensus census(const std::string& run_dir) {
 
 std::string netns_of_self() { return fs::read_symlink("/proc/self/ns/net").string(); }
 
+/// The intruder of ParallelRunsDoNotHearEachOther: on the config's channels (prefix BRFD_),
+/// answers every drift command of any run with 999 kip for the same step under its own run
+/// id, and sends drift commands, START/ABORT and fault heartbeats of that run id.
+void run_intruder(std::atomic<bool>& stop, std::atomic<long>& answered) {
+  struct Handler {
+    lcm::LCM* lc = nullptr;
+    std::atomic<long>* answered = nullptr;
+    messages::Channels ch;
+    void on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+      hybrid_lcm::drift_command_t cmd;
+      if (cmd.decode(rbuf->data, 0, rbuf->data_size) < 0 || cmd.run_id == "intruder") return;
+      hybrid_lcm::force_feedback_t fb;
+      fb.utime = messages::now_utime();
+      fb.run_id = "intruder";
+      fb.step = cmd.step;
+      fb.num_dampers = cmd.num_dampers;
+      fb.force_kip.assign(static_cast<std::size_t>(cmd.num_dampers), 999.0);
+      fb.measured_drift_in = cmd.drift_in;
+      fb.status = hybrid_lcm::force_feedback_t::STATUS_OK;
+      lc->publish(ch.force_feedback(), &fb);
+      const long n = ++*answered;
+      if (n % 16 == 0) {  // not every step: LCM drops a burst beyond a subscription's queue
+        hybrid_lcm::drift_command_t fake = cmd;
+        fake.run_id = "intruder";
+        fake.step = cmd.step + 1;
+        for (double& d : fake.drift_in) d += 0.5;
+        lc->publish(ch.drift_command(), &fake);
+      }
+      if (n % 256 == 0) {
+        hybrid_lcm::run_control_t rc;
+        rc.utime = messages::now_utime();
+        rc.run_id = "intruder";
+        rc.command = (n / 256) % 2 ? hybrid_lcm::run_control_t::COMMAND_ABORT : hybrid_lcm::run_control_t::COMMAND_START;
+        rc.num_dampers = 1;
+        rc.dt_s = 0.001;
+        rc.reason = "intruder";
+        lc->publish(ch.run_control(), &rc);
+        hybrid_lcm::heartbeat_t hb;
+        hb.utime = messages::now_utime();
+        hb.run_id = "intruder";
+        hb.sender = "intruder";
+        hb.sequence = n;
+        hb.state = hybrid_lcm::heartbeat_t::STATE_FAULT;
+        lc->publish(ch.heartbeat(), &hb);
+      }
+    }
+  };
+  std::unique_ptr<lcm::LCM> lc = messages::open_lcm("udpm://239.255.76.67:7667?ttl=0", false);
+  Handler h;
+  h.lc = lc.get();
+  h.answered = &answered;
+  lc->subscribe(h.ch.drift_command(), &Handler::on_command, &h);
+  while (!stop) lc->handleTimeout(20);
+}
+
 TEST(Batch, ParallelRunsDoNotHearEachOther) {
   const std::string dir = test_support::fresh_temp_dir("crosstalk");
   const std::string config = write_config(dir);
   test_support::write_text(dir + "/two.txt", records_dir() + "/" + kLabels[0] + ".AT2 1\n" + records_dir() + "/" +
                                                  kLabels[2] + ".AT2 1\n");
   const std::vector<std::string> two{kLabels[0], kLabels[2]};
+  struct Attempt {
+    bool both_ok = true;
+    std::vector<json> info;        // batch-run.json of both runs
+    std::vector<LogCensus> logs;   // LCM log census of both runs
+    std::vector<bool> ok;          // status ok
+  };
+  // Runs the two records in parallel. Every run that finishes ok must equal the run alone
+  // (the reference batch) exactly. A run may only fail by timing out (a lost datagram when
+  // runs share a namespace on a loaded machine); any other failure fails the test.
+  // Every run that finished ok must equal the run alone (the reference batch) exactly. A
+  // run may only fail by timing out (a lost datagram when runs share a namespace on a
+  // loaded machine); any other failure fails the test.
+  auto check_runs = [&](const std::string& name, const std::string& out, int exit_code) {
+    Attempt a;
+    for (const std::string& l : two) {
+      const std::string run_dir = dir + "/" + name + "/runs/" + l;
+      const json s = read_json(run_dir + "/summary.json");
+      a.info.push_back(read_json(run_dir + "/batch-run.json"));
+      a.logs.push_back(census(run_dir));
+      a.ok.push_back(s.at("status") == "ok");
+      if (!a.ok.back()) {
+        a.both_ok = false;
+        EXPECT_NE(s.at("error").get<std::string>().find("stopped answering"), std::string::npos)
+            << name << " " << l << ": " << s.at("error");
+        continue;
+      }
+      EXPECT_TRUE(test_support::read_text(run_dir + "/time_history.csv") ==
+                  test_support::read_text(reference_batch() + "/runs/" + l + "/time_history.csv"))
+          << name << " " << l;
+      expect_same_figures(s, read_json(reference_batch() + "/runs/" + l + "/summary.json"), name + " " + l);
+    }
+    if (a.both_ok) {
+      if (exit_code >= 0) {
+        EXPECT_EQ(exit_code, 0) << name << "\n" << out;
+      }
+      expect_final_line(out, 2, 2, 0);
+    }
+    return a;
+  };
   auto run = [&](const std::string& name, std::vector<std::string> extra) {
     std::vector<std::string> args{"--config", config, "--records", dir + "/two.txt", "--out", dir + "/" + name, "--jobs", "2"};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = batch(args);
-    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.out << r.err;
-    expect_final_line(r.out, 2, 2, 0);
-    for (const std::string& l : two) {  // results equal the reference (the runs one at a time)
-      EXPECT_TRUE(test_support::read_text(dir + "/" + name + "/runs/" + l + "/time_history.csv") ==
-                  test_support::read_text(reference_batch() + "/runs/" + l + "/time_history.csv"))
-          << name << " " << l;
-      expect_same_figures(read_json(dir + "/" + name + "/runs/" + l + "/summary.json"),
-                          read_json(reference_batch() + "/runs/" + l + "/summary.json"), name + " " + l);
+    return check_runs(name, r.out + r.err, r.exit_code);
+  };
+  // Shared-namespace scenarios are repeated (up to 3 times) until both runs complete.
+  auto until_both_ok = [&](const std::string& name, const std::vector<std::string>& extra) {
+    Attempt a;
+    for (int attempt = 1; attempt <= 3; ++attempt) {
+      a = run(name + "-" + std::to_string(attempt), extra);
+      if (a.both_ok) break;
+      std::printf("%s: attempt %d lost a datagram, again\n", name.c_str(), attempt);
     }
-    return std::vector<json>{read_json(dir + "/" + name + "/runs/" + two[0] + "/batch-run.json"),
-                             read_json(dir + "/" + name + "/runs/" + two[1] + "/batch-run.json")};
+    EXPECT_TRUE(a.both_ok) << name << ": no attempt completed both runs";
+    return a;
   };
 
   // 1. As shipped: each run in its own private network namespace, own prefix, own run id.
+  //    Both runs must complete the first time.
   {
-    const auto info = run("isolated", {});
-    EXPECT_NE(info[0].at("netns"), info[1].at("netns"));
-    EXPECT_NE(info[0].at("netns"), netns_of_self());
-    EXPECT_NE(info[0].at("channel_prefix"), info[1].at("channel_prefix"));
-    EXPECT_NE(info[0].at("run_id"), info[1].at("run_id"));
-    for (const std::string& l : two) {
-      const LogCensus c = census(dir + "/isolated/runs/" + l);
-      EXPECT_GT(c.own, 6000) << l;
-      EXPECT_EQ(c.foreign, 0) << l;
+    const Attempt a = run("isolated", {});
+    EXPECT_TRUE(a.both_ok);
+    EXPECT_NE(a.info[0].at("netns"), a.info[1].at("netns"));
+    EXPECT_NE(a.info[0].at("netns"), netns_of_self());
+    EXPECT_NE(a.info[0].at("channel_prefix"), a.info[1].at("channel_prefix"));
+    EXPECT_NE(a.info[0].at("run_id"), a.info[1].at("run_id"));
+    for (const LogCensus& c : a.logs) {
+      EXPECT_GT(c.own, 6000);
+      EXPECT_EQ(c.foreign, 0);
     }
   }
   // 2. Both runs in ONE namespace on purpose, distinct prefixes: still nothing foreign.
   {
-    const auto info = run("shared-netns", {"--shared-netns"});
-    EXPECT_EQ(info[0].at("netns"), info[1].at("netns"));
-    for (const std::string& l : two) {
-      const LogCensus c = census(dir + "/shared-netns/runs/" + l);
-      EXPECT_EQ(c.foreign, 0) << l;
-      for (const std::string& ch : c.channels)
-        EXPECT_EQ(ch.rfind(read_json(dir + "/shared-netns/runs/" + l + "/batch-run.json").at("channel_prefix"), 0), 0u) << ch;
+    const Attempt a = until_both_ok("shared-netns", {"--shared-netns"});
+    EXPECT_EQ(a.info[0].at("netns"), a.info[1].at("netns"));
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(a.logs[k].foreign, 0) << two[k];
+      for (const std::string& ch : a.logs[k].channels)
+        EXPECT_EQ(ch.rfind(a.info[k].at("channel_prefix").get<std::string>(), 0), 0u) << ch;
     }
   }
-  // 3. One namespace AND one prefix: the runs hear each other's traffic (the logs hold the
-  //    other run's messages), and the run-id filters of server and substructure reject it:
-  //    the results are still exactly those of the runs alone (checked in run()).
+  // 3. The run-id filter: one namespace, the config's prefix for every run, and an intruder
+  //    on the same channels. It answers every drift command with a wrong force (999 kip)
+  //    for the same step under another run id, and sends drift commands, START/ABORT and
+  //    fault heartbeats of that run id. Each run's LCM log holds the intruder's messages;
+  //    the run-id filters of server and substructure reject them: every completed run
+  //    equals the run alone exactly (checked in check_runs()). One run at a time here: two
+  //    real runs plus the intruder on one prefix overflow LCM's per-subscription queue on
+  //    a loaded machine (a lost command = a timeout, never a wrong number). Attempts that
+  //    lose a datagram are repeated.
   {
-    const auto info = run("shared-prefix", {"--shared-netns", "--same-channel-prefix"});
-    EXPECT_EQ(info[0].at("channel_prefix"), info[1].at("channel_prefix"));
-    long foreign = 0;
-    for (const std::string& l : two) {
-      const LogCensus c = census(dir + "/shared-prefix/runs/" + l);
-      std::printf("one namespace, one prefix: %s heard %ld messages of its own run, %ld of the other\n", l.c_str(),
-                  c.own, c.foreign);
-      foreign += c.foreign;
+    long heard_and_ok = 0;
+    for (int attempt = 1; attempt <= 3 && heard_and_ok == 0; ++attempt) {
+      const std::string name = "intruded-" + std::to_string(attempt);
+      const pid_t child = fork();
+      if (child == 0) {
+        // A private namespace shared by this process (the intruder), the batch driver and
+        // all its workers (--shared-netns).
+        try {
+          messages::enter_private_network_namespace();
+        } catch (const std::exception&) {
+          _exit(3);
+        }
+        std::atomic<bool> stop{false};
+        std::atomic<long> answered{0};
+        std::thread intruder([&] { run_intruder(stop, answered); });
+        std::vector<std::string> argv{hybridsim(), "batch", "--config", config, "--records", dir + "/two.txt", "--out",
+                                      dir + "/" + name, "--jobs", "1", "--shared-netns", "--same-channel-prefix"};
+        const auto r = test_support::run_process(argv);
+        stop = true;
+        intruder.join();
+        test_support::write_text(dir + "/" + name + ".intruder", std::to_string(answered.load()) + "\n");
+        test_support::write_text(dir + "/" + name + ".out", r.out + r.err);
+        _exit(0);
+      }
+      int status = 0;
+      waitpid(child, &status, 0);
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "intruder process failed";
+      const long answered = std::stol(test_support::read_text(dir + "/" + name + ".intruder"));
+      std::printf("%s: the intruder answered %ld drift commands with 999 kip\n", name.c_str(), answered);
+      EXPECT_GT(answered, 1000);
+      const Attempt a = check_runs(name, test_support::read_text(dir + "/" + name + ".out"), -1);
+      EXPECT_EQ(a.info[0].at("channel_prefix"), a.info[1].at("channel_prefix"));
+      for (std::size_t k = 0; k < 2; ++k) {
+        std::printf("  %s: %s, heard %ld messages of its own run, %ld of others\n", two[k].c_str(),
+                    a.ok[k] ? "ok, equal to the run alone" : "lost a datagram", a.logs[k].own, a.logs[k].foreign);
+        if (a.ok[k] && a.logs[k].foreign > 1000) ++heard_and_ok;
+      }
     }
-    EXPECT_GT(foreign, 100) << "the runs did not overlap: the test proves nothing";
+    EXPECT_GT(heard_and_ok, 0) << "no run completed amid foreign traffic: the test proves nothing";
   }
 }
 

@@ -88,6 +88,8 @@ TEST(RecordSet, BadListLinesAreErrorsNamingFileAndLine) {
   test_support::write_text(dir + "/empty.txt", "# nothing\n\n");
   EXPECT_NE(error_of(dir + "/empty.txt").find("names no records"), std::string::npos);
   EXPECT_NE(error_of(dir + "/nonexistent").find("no such file"), std::string::npos);
+  test_support::write_text(dir + "/one.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\n");
+  EXPECT_NE(error_of(dir + "/one.AT2").find("is a record, not a record list"), std::string::npos);
   fs::create_directories(dir + "/emptyfolder");
   EXPECT_NE(error_of(dir + "/emptyfolder").find("no record files"), std::string::npos);
 }
