@@ -615,6 +615,7 @@ DiagnoseResult run_diagnose(const DiagnoseOptions& o) {
         fmt(cur.held_rmse()) + " kip; effects now: " + current.effects.names());
     if (round == o.max_effects) result.stop_reason = "reached --max-effects " + std::to_string(o.max_effects);
   }
+  if (result.stop_reason.empty()) result.stop_reason = "--max-effects " + std::to_string(o.max_effects);
   log("");
   log("stop: " + result.stop_reason);
   result.effects = current.effects;
