@@ -125,7 +125,7 @@ std::string plot_gap(const std::string& csv, const std::string& png) {
     if (!gp) return "cannot write " + gp_path;
     gp << "set terminal pngcairo noenhanced size 900,500 font ',10'\n"
        << "set output " << gp_quote(png) << "\n"
-       << "set datafile separator ','\nset grid ytics\nset key top right\n"
+       << "set datafile separator ','\nset grid ytics\nset key top right autotitle columnhead\n"
        << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
        << "set boxwidth 0.9\nset yrange [0:*]\nset xtics rotate by -25 noenhanced\n"
        << "set ylabel 'NRMSE (RMSE / std of measured force)'\n"
