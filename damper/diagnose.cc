@@ -2,6 +2,7 @@
 
 #include "damper/brfd_config.h"
 #include "damper/diagnose_report.h"
+#include "damper/identification.h"
 
 #include <nlopt.hpp>
 
@@ -346,20 +347,8 @@ LugreParams joint_passive_lugre(const std::vector<Record>& recs, const BrfdParam
     ModelEffects effects;
     double best = INFINITY;
     LugreParams best_g;
-    static LugreParams unpack(const std::vector<double>& x) {
-      LugreParams g;
-      g.sigma0_kip_per_in = std::pow(10.0, x[0]);
-      g.sigma1_kip_s_per_in = x[1];
-      g.sigma2_kip_s_per_in = x[2];
-      g.fc_fwd_kip = x[3];
-      g.fc_bwd_kip = x[4];
-      g.fs_fwd_kip = x[3] * x[5];
-      g.fs_bwd_kip = x[4] * x[6];
-      g.vs_in_per_s = std::pow(10.0, x[7]);
-      return g;
-    }
     double operator()(const std::vector<double>& x) {
-      const LugreParams g = unpack(x);
+      const LugreParams g = lugre_from_search_vector(x);
       double se = 0.0;
       for (const Record& r : *recs) {
         BrfdParams p = model;

@@ -15,7 +15,9 @@ namespace {
 // Search vector: log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s.
 constexpr int kDim = 8;
 
-LugreParams unpack(const std::vector<double>& x) {
+}  // namespace
+
+LugreParams lugre_from_search_vector(const std::vector<double>& x) {
   LugreParams g;
   g.sigma0_kip_per_in = std::pow(10.0, x[0]);
   g.sigma1_kip_s_per_in = x[1];
@@ -27,6 +29,8 @@ LugreParams unpack(const std::vector<double>& x) {
   g.vs_in_per_s = std::pow(10.0, x[7]);
   return g;
 }
+
+namespace {
 
 std::vector<double> pack(const LugreParams& g) {
   return {std::log10(g.sigma0_kip_per_in), g.sigma1_kip_s_per_in, g.sigma2_kip_s_per_in,
@@ -44,7 +48,7 @@ struct Problem {
   std::vector<double> best_x;
 
   double rmse(const std::vector<double>& x) {
-    params.lugre = unpack(x);
+    params.lugre = lugre_from_search_vector(x);
     const std::vector<double> f = replay_force_kip(params, *test, begin, end, replay);
     double se = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
@@ -131,7 +135,7 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
 
   IdentificationResult r;
   r.params = start;
-  r.params.lugre = unpack(problem.best_x);
+  r.params.lugre = lugre_from_search_vector(problem.best_x);
   const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
   std::vector<double> full(test.size(), 0.0);
   std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));

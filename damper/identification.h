@@ -56,4 +56,8 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
 /// One line per parameter, with the residual (for logs and reports).
 std::string describe(const IdentificationResult& result);
 
+/// LuGre parameters from the identification search vector
+/// (log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s).
+LugreParams lugre_from_search_vector(const std::vector<double>& x);
+
 }  // namespace damper
