@@ -62,6 +62,9 @@ void ActuatorInterface::on_frame(const lcm::ReceiveBuffer* rbuf, const std::stri
   if (frames_ > 0) max_gap_s_ = std::max(max_gap_s_, std::chrono::duration<double>(now - last_frame_time_).count());
   ++frames_;
   last_frame_time_ = now;
+  if (frame_sink_ && frame_sink_->size() < frame_sink_->capacity()) {
+    frame_sink_->push_back({frame_.sequence, frame_.command_sequence, frame_.drum_displacement_in});
+  }
 }
 
 }  // namespace damper::physical

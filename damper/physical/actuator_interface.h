@@ -9,6 +9,7 @@
 
 #include "damper/physical/command_auth.h"
 #include "damper/physical/safety.h"
+#include "damper/physical/tracking.h"
 #include "hybrid_lcm/actuator_command_t.hpp"
 #include "hybrid_lcm/sensor_frame_t.hpp"
 #include "messages/lcm_bus.h"
@@ -51,6 +52,11 @@ class ActuatorInterface {
   /// Frames that could not be decoded (reported on stderr naming the channel).
   long bad_frames() const { return bad_frames_; }
 
+  /// From now on every frame taken is appended to `sink` (period number, command in force,
+  /// measured drum displacement) while it has capacity: the loop never allocates, so reserve
+  /// first. nullptr stops recording. This is the controller-clock record of tracking.h.
+  void record_frames(std::vector<FrameSample>* sink) { frame_sink_ = sink; }
+
  private:
   void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
 
@@ -67,6 +73,7 @@ class ActuatorInterface {
   long bad_frames_ = 0;
   double max_gap_s_ = 0.0;
   bool bound_ = false;
+  std::vector<FrameSample>* frame_sink_ = nullptr;
   Clock::time_point last_frame_time_{};
 };
 

@@ -65,6 +65,8 @@ class PhysicalNode {
     lcm_->subscribe(o.channels.drift_command(), &PhysicalNode::on_drift, this);
     target_.reserve(1 << 19);
     measured_.reserve(1 << 19);
+    target_by_command_.reserve(1 << 19);
+    frames_seen_.reserve(1 << 19);
     encode_buffer_.reserve(1024);
     why_.reserve(512);
   }
@@ -346,6 +348,7 @@ class PhysicalNode {
           }
           phase_ = Phase::running;
           act_.reset_frame_gap();
+          act_.record_frames(&frames_seen_);
           run_start_ = now;
           last_drift_ = now;
           std::cout << "brfd-substructure: at the start position, ready" << std::endl;
@@ -411,6 +414,8 @@ class PhysicalNode {
     }
     current_command_ = sp.drum_in;
     frames_at_publish_ = act_.frames_received();
+    if (target_by_command_.empty()) first_run_command_ = act_.last_sequence();
+    if (target_by_command_.size() < target_by_command_.capacity()) target_by_command_.push_back(current_target_);
   }
 
   void answer_step(Clock::time_point now) {
@@ -488,7 +493,15 @@ class PhysicalNode {
 
   int finish() {
     if (recorder_) recorder_->finish();
-    const TrackingIndicators t = tracking_indicators(target_, measured_, period_, 0, target_.size());
+    act_.record_frames(nullptr);
+    TrackingIndicators t = tracking_indicators(target_, measured_, period_, 0, target_.size());
+    // The actuator's delay on the controller's clock (tracking.h): independent of whether
+    // this loop kept one step per controller period. The per-step figure is kept beside it.
+    const double step_delay_ms = t.delay_ms;
+    const ControllerTimeSeries c = controller_time_series(frames_seen_, target_by_command_, first_run_command_);
+    t.delay_ms = cross_correlation_delay_ms(c.target_in, c.measured_in, period_, 0, c.target_in.size(), 128);
+    const double periods_per_step =
+        steps_done_ > 0 ? static_cast<double>(c.target_in.size()) / static_cast<double>(steps_done_) : 0.0;
     const Eigen::Vector3d& a = ats_.identified();
     const double equivalent_delay_ms = a[0] > 0 ? 1e3 * a[1] / a[0] : 0.0;
     if (!target_.empty()) {
@@ -512,7 +525,14 @@ class PhysicalNode {
       j["rms_error_in"] = t.rms_error_in;
       j["peak_error_in"] = t.peak_error_in;
       j["peak_target_in"] = t.peak_target_in;
-      j["definitions"] = {{"delay_ms", "lag of measured behind target drum displacement at the cross-correlation peak"},
+      j["step_delay_ms"] = step_delay_ms;
+      j["controller_periods_per_step"] = periods_per_step;
+      j["missing_frames"] = c.missing_frames;
+      j["definitions"] = {{"delay_ms", "lag of measured behind target drum displacement at the cross-correlation peak, "
+                                       "on the controller's clock (sensor frame numbers; the target of the command in "
+                                       "force at each frame)"},
+                          {"step_delay_ms", "the same lag counted in server steps (smaller than delay_ms when the loop "
+                                            "ran slower than the controller: controller_periods_per_step > 1)"},
                           {"nrms_error_pct", "RMS(measured - target) / max|target| * 100"},
                           {"peak_error_in", "max |measured - target|"}};
       j["ats"] = {{"enabled", s_.ats.enabled}, {"a0", a[0]}, {"a1_s", a[1]}, {"a2_s2", a[2]},
@@ -581,6 +601,9 @@ class PhysicalNode {
   int64_t trip_step_ = -1;
   int64_t heartbeat_sequence_ = 0;
   std::vector<double> target_, measured_;
+  std::vector<double> target_by_command_;   // target of run command first_run_command_ + i
+  int64_t first_run_command_ = 0;
+  std::vector<FrameSample> frames_seen_;    // every frame while running (controller clock)
   std::vector<uint8_t> encode_buffer_;
 };
 

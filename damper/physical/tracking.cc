@@ -61,6 +61,32 @@ TrackingIndicators tracking_indicators(const std::vector<double>& target, const 
   return t;
 }
 
+ControllerTimeSeries controller_time_series(const std::vector<FrameSample>& frames,
+                                            const std::vector<double>& target_by_command,
+                                            int64_t first_command_sequence) {
+  ControllerTimeSeries s;
+  const int64_t last_command = first_command_sequence + static_cast<int64_t>(target_by_command.size());
+  int64_t previous = -1;
+  for (const FrameSample& f : frames) {
+    if (f.command_sequence < first_command_sequence || f.command_sequence >= last_command) continue;
+    if (previous >= 0 && f.frame_sequence <= previous) continue;  // out of order
+    const double target = target_by_command[static_cast<std::size_t>(f.command_sequence - first_command_sequence)];
+    if (previous >= 0 && f.frame_sequence > previous + 1) {
+      const int64_t gap = f.frame_sequence - previous;
+      const double m0 = s.measured_in.back(), t0 = s.target_in.back();
+      for (int64_t j = 1; j < gap; ++j) {
+        s.target_in.push_back(t0);
+        s.measured_in.push_back(m0 + (f.measured_in - m0) * static_cast<double>(j) / static_cast<double>(gap));
+        ++s.missing_frames;
+      }
+    }
+    s.target_in.push_back(target);
+    s.measured_in.push_back(f.measured_in);
+    previous = f.frame_sequence;
+  }
+  return s;
+}
+
 std::string format_tracking(const TrackingIndicators& t) {
   char b[200];
   std::snprintf(b, sizeof b, "delay %.2f ms, NRMS error %.2f %%, RMS error %.4f in, peak error %.4f in (%zu samples)",

@@ -7,8 +7,22 @@
 ///    through the peak; positive = measured lags the target.
 ///  - nrms_error_pct: RMS(measured - target) / max|target| · 100.
 ///  - peak_error_in: max |measured - target|.
+///
+/// Time base of the delay. A lab controller (or brfd-rig) runs its actuator on its own clock,
+/// one sensor frame per period; the substructure answers one server step per frame only while
+/// the whole loop keeps real time. When it falls behind (a loaded machine), the controller
+/// ticks more than once per step, holding the last command, and a delay measured on the
+/// per-step series counts steps, not controller periods: a 20 ms delay + 6 ms lag measured
+/// 19.8 ms on a loop running at ~78 % of real time (issue 18). The actuator's delay is
+/// therefore measured on the controller's clock: controller_time_series() places the target of
+/// the command in force at each frame (the frame says which command that is) and the measured
+/// displacement at that frame's tick number. On that clock a delay line of D s and a discrete
+/// first-order lag of time constant tau (the rig's exact update x += (1 - e^{-T/tau})(u - x),
+/// T the period) measure D + phase delay of the lag, ≈ D + tau - T/2 for slow motion,
+/// independent of how fast the loop ran.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +46,28 @@ TrackingIndicators tracking_indicators(const std::vector<double>& target_in, con
 /// Delay (ms) of `y` behind `x` by cross-correlation (see file comment).
 double cross_correlation_delay_ms(const std::vector<double>& x, const std::vector<double>& y, double dt_s,
                                   std::size_t begin, std::size_t end, int max_lag_samples);
+
+/// One sensor frame as the substructure received it.
+struct FrameSample {
+  int64_t frame_sequence = 0;    ///< the controller's period counter (sensor_frame_t.sequence)
+  int64_t command_sequence = 0;  ///< the actuator command in force at that period
+  double measured_in = 0.0;      ///< measured drum displacement
+};
+
+/// Target and measured drum displacement on the controller's clock, one sample per period.
+struct ControllerTimeSeries {
+  std::vector<double> target_in, measured_in;
+  long missing_frames = 0;  ///< periods with no frame received: target held, measured interpolated
+};
+
+/// Frames whose command in force is one of the commands [first_command_sequence,
+/// first_command_sequence + target_by_command.size()) (target_by_command[i] is the target of
+/// command first_command_sequence + i), placed at their period number. Frames out of order
+/// are dropped; a gap of missing periods is filled (target of the earlier frame held,
+/// measured linearly interpolated) and counted.
+ControllerTimeSeries controller_time_series(const std::vector<FrameSample>& frames,
+                                            const std::vector<double>& target_by_command,
+                                            int64_t first_command_sequence);
 
 /// One line: "delay 21.3 ms, NRMS error 4.1 %, peak error 0.052 in (30720 samples)".
 std::string format_tracking(const TrackingIndicators& t);

@@ -174,14 +174,26 @@ TEST(PhysicalSystem, AtsCutsMeasuredDelayAndRmsTrackingErrorWith20msEmulatedDela
   const json& off = tracking[0];
   const json& on = tracking[1];
   std::printf("El Centro 4 s, rig delay 20 ms + lag 6 ms, over LCM in real time:\n"
+              "  loop: %.4f / %.4f controller periods per step; delay counted in steps %.2f / %.2f ms\n"
               "  no compensation: delay %.2f ms, NRMS %.2f %%, RMS %.4f in, peak %.4f in\n"
               "  ATS:             delay %.2f ms, NRMS %.2f %%, RMS %.4f in, peak %.4f in (a1/a0 = %.2f ms)\n",
+              off.value("controller_periods_per_step", 0.0), on.value("controller_periods_per_step", 0.0),
+              off.value("step_delay_ms", 0.0), on.value("step_delay_ms", 0.0),
               off["delay_ms"].get<double>(), off["nrms_error_pct"].get<double>(), off["rms_error_in"].get<double>(),
               off["peak_error_in"].get<double>(), on["delay_ms"].get<double>(), on["nrms_error_pct"].get<double>(),
               on["rms_error_in"].get<double>(), on["peak_error_in"].get<double>(),
               on["ats"]["equivalent_delay_ms"].get<double>());
-  EXPECT_GT(off["delay_ms"].get<double>(), 20.0);
+  // Uncompensated, the delay on the controller's clock is the rig's: the 20 ms delay line plus
+  // the discrete 6 ms lag, D + tau - T/2 = 25.51 ms for slow motion (T = 1/1024 s; closed form
+  // and estimator checked to 0.01 ms in tracking_test.cc). Bound: one period (0.98 ms) for the
+  // ramp-in blend, the LVDT noise and commands held when the loop falls behind; measured
+  // 25.32-25.47 ms, also with the loop at 1.4-1.7 controller periods per step (no SCHED_FIFO,
+  // two busy processes), where the old per-step figure read 16.7-22.8 ms (issue 18).
+  EXPECT_NEAR(off["delay_ms"].get<double>(), 1e3 * (0.020 + 0.006 - 0.5 / 1024.0), 1.0);
+  // ATS: the residual delay converges to within two samples (ats_test.cc); over 4 s that
+  // include its convergence from a1 = 0 we measure 0.2-0.5 ms. Bound: 30 % of uncompensated.
   EXPECT_LT(std::abs(on["delay_ms"].get<double>()), 0.3 * off["delay_ms"].get<double>());
+  // Per-step errors, not wall-clock figures: measured 0.0046 vs 0.0557 in (12x); bound 2x.
   EXPECT_LT(on["rms_error_in"].get<double>(), 0.5 * off["rms_error_in"].get<double>());
   EXPECT_LT(on["nrms_error_pct"].get<double>(), 0.5 * off["nrms_error_pct"].get<double>());
 }
