@@ -20,7 +20,7 @@
 /// Results (in results_dir): physical.csv (every step), tracking.json (tracking indicators,
 /// ATS coefficients), safety.json (limits in force, trip reason and step).
 
-#include "damper/brfd_model.h"
+#include "damper/model/brfd_model.h"
 #include "damper/physical/physical_config.h"
 #include "messages/lcm_bus.h"
 

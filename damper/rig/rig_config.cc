@@ -1,7 +1,7 @@
 #include "damper/rig/rig_config.h"
 
 #include "common/strict_yaml.h"
-#include "damper/brfd_config.h"
+#include "damper/model/brfd_config.h"
 
 #include <filesystem>
 #include <iomanip>

@@ -7,7 +7,7 @@
 /// Strict loading: unknown keys, wrong types and out-of-range values name file, line and key.
 /// Units: in, s, kip; electric actuator load cells in lb.
 
-#include "damper/brfd_model.h"
+#include "damper/model/brfd_model.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 #include "damper/rig/rig_node.h"
 
-#include "damper/brfd_data.h"
+#include "damper/data/brfd_data.h"
 #include "damper/physical/command_auth.h"
 #include "damper/physical/realtime.h"
 #include "damper/physical/run_key.h"

@@ -12,7 +12,7 @@
 /// backward rotation the other way round (C3 taut actuator 1, C4 slack actuator 2), with the
 /// scaling factors C1..C4 of Table 2 (damper model's semiactive.scaling), plus pretension.
 
-#include "damper/brfd_model.h"
+#include "damper/model/brfd_model.h"
 #include "damper/rig/rig_config.h"
 
 #include <random>

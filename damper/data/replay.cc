@@ -1,0 +1,72 @@
+#include "damper/data/replay.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace damper {
+
+DamperInput input_at(const BrfdTest& test, std::size_t i, const BrfdParams& params) {
+  DamperInput in;
+  in.drum_disp_in = test.drum_disp_in[i];
+  in.drum_vel_in_per_s = test.drum_vel_in_per_s[i];
+  if (test.has_actuator_positions) {
+    in.actuator1_in = test.actuator1_in[i];
+    in.actuator2_in = test.actuator2_in[i];
+  } else {
+    in.actuator1_in = params.semiactive.actuator1_initial_in;
+    in.actuator2_in = params.semiactive.actuator2_initial_in;
+  }
+  return in;
+}
+
+std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& test,
+                                     std::size_t begin, std::size_t end,
+                                     const ReplayOptions& options) {
+  assert(begin < end && end <= test.size());
+  BrfdModel model(params);
+  const LugreParams& g = params.lugre;
+  if (options.initial_bristle_from_force) {
+    // z0 with spring force F0 (= F0/σ0 without effects; backlash and asymmetry change the spring).
+    const double f_max = std::max(g.fs_fwd_kip, g.fs_bwd_kip);
+    model.set_bristle_in(model.initial_bristle_for_force(std::clamp(test.force_kip[begin], -f_max, f_max)));
+  }
+  std::vector<double> f(end - begin);
+  f[0] = model.force_kip(model.bristle_in(), input_at(test, begin, params));
+  for (std::size_t i = begin + 1; i < end; ++i)
+    f[i - begin] = model.step(input_at(test, i, params), test.dt_s);
+  return f;
+}
+
+ErrorMetrics force_error(const std::vector<double>& measured, const std::vector<double>& predicted,
+                         std::size_t begin, std::size_t end) {
+  assert(begin < end && end <= measured.size() && predicted.size() == measured.size());
+  ErrorMetrics m;
+  double se = 0.0, sum = 0.0, sum2 = 0.0;
+  double lo = measured[begin], hi = measured[begin];
+  for (std::size_t i = begin; i < end; ++i) {
+    const double e = predicted[i] - measured[i];
+    se += e * e;
+    sum += measured[i];
+    sum2 += measured[i] * measured[i];
+    lo = std::min(lo, measured[i]);
+    hi = std::max(hi, measured[i]);
+  }
+  const double n = static_cast<double>(end - begin);
+  m.samples = end - begin;
+  m.rmse_kip = std::sqrt(se / n);
+  const double mean = sum / n;
+  const double var = std::max(0.0, sum2 / n - mean * mean);
+  m.nrmse_std = var > 0.0 ? m.rmse_kip / std::sqrt(var) : INFINITY;
+  m.nrmse_range = hi > lo ? m.rmse_kip / (hi - lo) : INFINITY;
+  return m;
+}
+
+std::size_t index_at_time(const BrfdTest& test, double t_s) {
+  if (test.size() == 0) return 0;
+  const double k = std::round((t_s - test.time_s.front()) / test.dt_s);
+  if (k <= 0.0) return 0;
+  return std::min(test.size(), static_cast<std::size_t>(k));
+}
+
+}  // namespace damper

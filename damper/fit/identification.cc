@@ -1,0 +1,167 @@
+#include "damper/fit/identification.h"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace damper {
+
+namespace {
+
+// Search vector: log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s.
+constexpr int kDim = 8;
+
+}  // namespace
+
+LugreParams lugre_from_search_vector(const std::vector<double>& x) {
+  LugreParams g;
+  g.sigma0_kip_per_in = std::pow(10.0, x[0]);
+  g.sigma1_kip_s_per_in = x[1];
+  g.sigma2_kip_s_per_in = x[2];
+  g.fc_fwd_kip = x[3];
+  g.fc_bwd_kip = x[4];
+  g.fs_fwd_kip = x[3] * x[5];
+  g.fs_bwd_kip = x[4] * x[6];
+  g.vs_in_per_s = std::pow(10.0, x[7]);
+  return g;
+}
+
+namespace {
+
+std::vector<double> pack(const LugreParams& g) {
+  return {std::log10(g.sigma0_kip_per_in), g.sigma1_kip_s_per_in, g.sigma2_kip_s_per_in,
+          g.fc_fwd_kip, g.fc_bwd_kip, g.fs_fwd_kip / g.fc_fwd_kip, g.fs_bwd_kip / g.fc_bwd_kip,
+          std::log10(g.vs_in_per_s)};
+}
+
+struct Problem {
+  const BrfdTest* test;
+  BrfdParams params;
+  std::size_t begin, end;
+  ReplayOptions replay;
+  int evaluations = 0;
+  double best = INFINITY;
+  std::vector<double> best_x;
+
+  double rmse(const std::vector<double>& x) {
+    params.lugre = lugre_from_search_vector(x);
+    const std::vector<double> f = replay_force_kip(params, *test, begin, end, replay);
+    double se = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double e = f[i - begin] - test->force_kip[i];
+      se += e * e;
+    }
+    const double r = std::sqrt(se / static_cast<double>(end - begin));
+    ++evaluations;
+    if (r < best) {
+      best = r;
+      best_x = x;
+    }
+    return std::isfinite(r) ? r : 1e9;
+  }
+};
+
+double objective(const std::vector<double>& x, std::vector<double>& /*grad*/, void* data) {
+  return static_cast<Problem*>(data)->rmse(x);
+}
+
+void run_stage(nlopt::algorithm algo, int max_evals, const std::vector<double>& lo,
+               const std::vector<double>& hi, Problem& problem, std::vector<double>& x) {
+  nlopt::opt opt(algo, kDim);
+  opt.set_lower_bounds(lo);
+  opt.set_upper_bounds(hi);
+  opt.set_min_objective(objective, &problem);
+  opt.set_maxeval(max_evals);
+  opt.set_xtol_rel(1e-6);
+  opt.set_ftol_abs(1e-7);
+  double f = 0.0;
+  try {
+    opt.optimize(x, f);
+  } catch (const nlopt::roundoff_limited&) {
+    // Converged as far as floating point allows: keep the best point seen.
+  } catch (const nlopt::forced_stop&) {
+  }
+  x = problem.best_x;
+}
+
+}  // namespace
+
+IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
+                                    const IdentificationOptions& opt) {
+  const std::size_t begin = index_at_time(test, opt.t0_s);
+  const std::size_t end = std::isfinite(opt.t1_s) ? index_at_time(test, opt.t1_s) : test.size();
+  if (end <= begin || end - begin < 100) {
+    std::ostringstream o;
+    o << test.path << ": identification window [" << opt.t0_s << ", " << opt.t1_s
+      << ") s holds " << (end > begin ? end - begin : 0) << " samples (need at least 100)";
+    throw std::invalid_argument(o.str());
+  }
+  double peak_v = 0.0;
+  for (std::size_t i = begin; i < end; ++i) peak_v = std::max(peak_v, std::abs(test.drum_vel_in_per_s[i]));
+  if (peak_v < 0.05) {
+    throw std::invalid_argument(test.path + ": the drum barely moves in the identification window "
+                                "(peak |v| < 0.05 in/s): nothing to identify");
+  }
+
+  const LugreBounds& b = opt.bounds;
+  const std::vector<double> lo = {std::log10(b.sigma0_min), b.sigma1_min, b.sigma2_min, b.fc_min,
+                                  b.fc_min, b.fs_ratio_min, b.fs_ratio_min, std::log10(b.vs_min)};
+  const std::vector<double> hi = {std::log10(b.sigma0_max), b.sigma1_max, b.sigma2_max, b.fc_max,
+                                  b.fc_max, b.fs_ratio_max, b.fs_ratio_max, std::log10(b.vs_max)};
+
+  Problem problem{&test, start, begin, end, opt.replay, 0, INFINITY, {}};
+  std::vector<double> x = pack(start.lugre);
+  for (int k = 0; k < kDim; ++k) x[k] = std::clamp(x[k], lo[k], hi[k]);
+  problem.rmse(x);  // the start point counts as a candidate
+
+  std::ostringstream algo;
+  if (opt.global_max_evals > 0 && opt.global_runs > 0) {
+    // Several seeded runs: the cost has several local minima (e.g. a Stribeck hump vs viscous
+    // friction explaining the same force rise); each run returns the best point seen so far.
+    for (int run = 0; run < opt.global_runs; ++run) {
+      nlopt::srand(opt.seed + static_cast<unsigned>(run));
+      std::vector<double> xr = x;
+      run_stage(nlopt::GN_CRS2_LM, opt.global_max_evals, lo, hi, problem, xr);
+    }
+    x = problem.best_x;
+    algo << opt.global_runs << " x GN_CRS2_LM(" << opt.global_max_evals << ") + ";
+  }
+  run_stage(nlopt::LN_BOBYQA, opt.local_max_evals, lo, hi, problem, x);
+  algo << "LN_BOBYQA(" << opt.local_max_evals << ")";
+
+  IdentificationResult r;
+  r.params = start;
+  r.params.lugre = lugre_from_search_vector(problem.best_x);
+  const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
+  std::vector<double> full(test.size(), 0.0);
+  std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
+  r.residual = force_error(test.force_kip, full, begin, end);
+  r.t0_s = test.time_s[begin];
+  r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+  r.evaluations = problem.evaluations;
+  r.algorithm = algo.str();
+  return r;
+}
+
+std::string describe(const IdentificationResult& r) {
+  const LugreParams& g = r.params.lugre;
+  std::ostringstream o;
+  o << std::setprecision(5);
+  o << "identified on [" << r.t0_s << ", " << r.t1_s << ") s with " << r.algorithm << ", "
+    << r.evaluations << " evaluations\n"
+    << "  sigma0 = " << g.sigma0_kip_per_in << " kip/in\n"
+    << "  sigma1 = " << g.sigma1_kip_s_per_in << " kip s/in\n"
+    << "  sigma2 = " << g.sigma2_kip_s_per_in << " kip s/in\n"
+    << "  Fc (b) fwd = " << g.fc_fwd_kip << " kip, bwd = " << g.fc_bwd_kip << " kip\n"
+    << "  Fs fwd = " << g.fs_fwd_kip << " kip, bwd = " << g.fs_bwd_kip << " kip\n"
+    << "  v_s = " << g.vs_in_per_s << " in/s\n"
+    << "  residual on the window: rmse = " << r.residual.rmse_kip
+    << " kip, nrmse(std) = " << r.residual.nrmse_std << ", nrmse(range) = " << r.residual.nrmse_range;
+  return o.str();
+}
+
+}  // namespace damper

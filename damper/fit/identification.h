@@ -1,0 +1,63 @@
+#pragma once
+/// @file identification.h
+/// Identification of the LuGre parameters of the BRFD (Eqs. 1-3; b = Fc per direction) from
+/// PASSIVE data: a characterization test (actuators hold position) or the drum cycles of a
+/// semi-active test before its electric actuators first move. The fit minimises the RMSE
+/// between measured force and the force replayed through BrfdModel over a time window, with
+/// NLopt: a bounded global search (GN_CRS2_LM) followed by a local polish (LN_BOBYQA).
+
+#include "damper/data/brfd_data.h"
+#include "damper/model/brfd_model.h"
+#include "damper/data/replay.h"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace damper {
+
+/// Bounds of the identified parameters (kip, in, s).
+struct LugreBounds {
+  double sigma0_min = 1.0, sigma0_max = 3000.0;      ///< kip/in (searched on a log scale)
+  double sigma1_min = 0.0, sigma1_max = 1.0;         ///< kip s/in
+  double sigma2_min = 0.0, sigma2_max = 1.0;         ///< kip s/in
+  double fc_min = 0.05, fc_max = 10.0;               ///< kip, per direction
+  double fs_ratio_min = 1.0, fs_ratio_max = 3.0;     ///< Fs/Fc per direction (static >= kinetic)
+  double vs_min = 0.01, vs_max = 5.0;                ///< in/s (log scale)
+};
+
+/// Options of identify_lugre().
+struct IdentificationOptions {
+  double t0_s = 0.0;                                      ///< window start, s
+  double t1_s = std::numeric_limits<double>::infinity();  ///< window end, s (clamped to the test)
+  LugreBounds bounds;
+  int global_max_evals = 6000;   ///< GN_CRS2_LM evaluations per run (0: skip the global stage)
+  int global_runs = 3;           ///< independent GN_CRS2_LM runs (seeds seed, seed+1, ...)
+  int local_max_evals = 3000;    ///< LN_BOBYQA evaluations
+  unsigned seed = 1;             ///< NLopt's random seed (reproducible fits)
+  ReplayOptions replay;
+};
+
+/// Result: fitted parameters (the `start` params with the LuGre block replaced) and residual.
+struct IdentificationResult {
+  BrfdParams params;
+  ErrorMetrics residual;          ///< over the window
+  double t0_s = 0.0, t1_s = 0.0;  ///< window actually used
+  int evaluations = 0;
+  std::string algorithm;          ///< e.g. "GN_CRS2_LM(4000) + LN_BOBYQA(3000)"
+};
+
+/// Fits σ0, σ1, σ2, Fc and Fs per direction and v_s on [t0, t1) of `test`. The semi-active part
+/// of `start` is kept; inside a pre-actuation window the actuators sit at x'_1, x'_2 so Eq. (4)
+/// is b. Throws std::invalid_argument if the window holds fewer than 100 samples or no motion.
+IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
+                                    const IdentificationOptions& options);
+
+/// One line per parameter, with the residual (for logs and reports).
+std::string describe(const IdentificationResult& result);
+
+/// LuGre parameters from the identification search vector
+/// (log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s).
+LugreParams lugre_from_search_vector(const std::vector<double>& x);
+
+}  // namespace damper

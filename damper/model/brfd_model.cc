@@ -1,0 +1,295 @@
+#include "damper/model/brfd_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace damper {
+
+namespace {
+// Initial low-passed speed of residual_static (in/s): the model starts "moving", so a record
+// that starts at rest is not relaxed before its first motion.
+constexpr double kInitialSlowSpeed = 1e3;
+}  // namespace
+
+BrfdModel::BrfdModel(const BrfdParams& params)
+    : params_(params), has_effects_(!params.effects.empty()) {
+  reset();
+}
+
+void BrfdModel::reset() {
+  z_in_ = 0.0;
+  lag1_in_ = params_.semiactive.actuator1_initial_in;
+  lag2_in_ = params_.semiactive.actuator2_initial_in;
+  slow_speed_ = kInitialSlowSpeed;
+}
+
+double KineticFrictionCurve::at(double v) const {
+  const std::vector<double>& b = v >= 0.0 ? fwd_kip : bwd_kip;
+  const double s = std::abs(v);
+  if (s <= speed_in_per_s.front()) return b.front();
+  if (s >= speed_in_per_s.back()) return b.back();
+  const auto it = std::upper_bound(speed_in_per_s.begin(), speed_in_per_s.end(), s);
+  const std::size_t k = static_cast<std::size_t>(it - speed_in_per_s.begin());
+  const double w = (s - speed_in_per_s[k - 1]) / (speed_in_per_s[k] - speed_in_per_s[k - 1]);
+  return b[k - 1] + w * (b[k] - b[k - 1]);
+}
+
+double BrfdModel::base_kinetic_friction_kip(double v) const {
+  if (!params_.b_of_velocity.empty()) return params_.b_of_velocity.at(v);
+  return v >= 0.0 ? params_.lugre.fc_fwd_kip : params_.lugre.fc_bwd_kip;
+}
+
+double BrfdModel::kinetic_friction_kip(const DamperInput& in) const {
+  if (has_effects_) return levels(in, in.drum_vel_in_per_s >= 0.0).fc;
+  const bool forward = in.drum_vel_in_per_s >= 0.0;
+  const double b = base_kinetic_friction_kip(in.drum_vel_in_per_s);
+  if (params_.kind == DamperKind::passive_lugre) return b;
+  // Eq. (4): b + (C_a m_a1 + C_b m_b1)(x1 - x1') + (C_a m_a2 + C_b m_b2)(x2 - x2'),
+  // rows (1,2) forward and (3,4) backward.
+  const SemiActiveParams& s = params_.semiactive;
+  const int a = forward ? 0 : 2;
+  const int c = forward ? 1 : 3;
+  const double gain1 = s.scaling[a] * s.slopes_kip_per_in[a][0] + s.scaling[c] * s.slopes_kip_per_in[c][0];
+  const double gain2 = s.scaling[a] * s.slopes_kip_per_in[a][1] + s.scaling[c] * s.slopes_kip_per_in[c][1];
+  const double fc = b + gain1 * (in.actuator1_in - s.actuator1_initial_in) +
+                    gain2 * (in.actuator2_in - s.actuator2_initial_in);
+  return std::max(fc, s.fc_floor_kip);
+}
+
+BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
+  const LugreParams& p = params_.lugre;
+  const ModelEffects& e = params_.effects;
+  const double speed = std::abs(in.drum_vel_in_per_s);
+  double b = forward ? p.fc_fwd_kip : p.fc_bwd_kip;
+  if (!params_.b_of_velocity.empty()) b = params_.b_of_velocity.at(forward ? speed : -std::max(speed, 1e-300));
+  double dfc = 0.0;  // Eq. (4) increment, with the lagged positions x~ if actuator_lag is on
+  if (params_.kind == DamperKind::semiactive) {
+    const SemiActiveParams& s = params_.semiactive;
+    const int a = forward ? 0 : 2;
+    const int c = forward ? 1 : 3;
+    const double gain1 = s.scaling[a] * s.slopes_kip_per_in[a][0] + s.scaling[c] * s.slopes_kip_per_in[c][0];
+    const double gain2 = s.scaling[a] * s.slopes_kip_per_in[a][1] + s.scaling[c] * s.slopes_kip_per_in[c][1];
+    const double x1 = e.actuator_lag ? lag1_in_ : in.actuator1_in;
+    const double x2 = e.actuator_lag ? lag2_in_ : in.actuator2_in;
+    dfc = gain1 * (x1 - s.actuator1_initial_in) + gain2 * (x2 - s.actuator2_initial_in);
+  }
+  double fc = b + dfc;
+  double fs = forward ? p.fs_fwd_kip : p.fs_bwd_kip;
+  double tension = 1.0;
+  double factor = 1.0;
+  if (e.pretension) {
+    // Fs follows a share of the Eq. (4) tension change; a share of it scales the band force at once.
+    fs *= std::max(0.05, 1.0 + e.pretension->fs_share * dfc / b);
+    tension = std::max(0.05, 1.0 + e.pretension->instant_share * dfc / b);
+  }
+  if (e.self_energizing) {
+    const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
+    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in);
+  }
+  if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
+  fc *= factor;
+  fs *= factor;
+  if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
+  return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension};
+}
+
+double BrfdModel::stribeck_kip(const DamperInput& in) const {
+  const LugreParams& p = params_.lugre;
+  const double v = in.drum_vel_in_per_s;
+  if (has_effects_) return frame(in).g;  // Eq. (2)/(5) with the effects
+  const double fs = v >= 0.0 ? p.fs_fwd_kip : p.fs_bwd_kip;
+  const double fc = kinetic_friction_kip(in);
+  const double r = v / p.vs_in_per_s;
+  return fc + (fs - fc) * std::exp(-r * r);  // Eq. (2) / Eq. (5)
+}
+
+double BrfdModel::stiffness(bool positive_z) const {
+  const double s0 = params_.lugre.sigma0_kip_per_in;
+  if (!params_.effects.asymmetry) return s0;
+  return s0 * (positive_z ? 1.0 + params_.effects.asymmetry->stiffness : 1.0 - params_.effects.asymmetry->stiffness);
+}
+
+double BrfdModel::spring_force_kip(double z) const {
+  if (!has_effects_) return params_.lugre.sigma0_kip_per_in * z;
+  const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
+  const double over = std::max(std::abs(z) - slack, 0.0);  // backlash dead zone D(z)
+  return z >= 0.0 ? stiffness(true) * over : -stiffness(false) * over;
+}
+
+double BrfdModel::bristle_for_force(double f) const {
+  if (!has_effects_) return f / params_.lugre.sigma0_kip_per_in;
+  const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
+  if (f > 0.0) return slack + f / stiffness(true);
+  if (f < 0.0) return -slack + f / stiffness(false);
+  return 0.0;
+}
+
+double BrfdModel::initial_bristle_for_force(double f) const {
+  if (!has_effects_ || !params_.effects.backlash) return bristle_for_force(f);
+  // A force within 10 % of the smaller kinetic friction may be a band still in its slack: the state
+  // moves through the slack in proportion (a force of exactly 0 is the centre of the slack).
+  const double slack = params_.effects.backlash->slack_in;
+  const double engage = 0.1 * std::min(params_.lugre.fc_fwd_kip, params_.lugre.fc_bwd_kip);
+  const double share = engage > 0.0 ? std::min(1.0, std::abs(f) / engage) : 1.0;
+  const double z = bristle_for_force(f);
+  return z - (f > 0.0 ? 1.0 : f < 0.0 ? -1.0 : 0.0) * slack * (1.0 - share);
+}
+
+BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
+  // Everything the effects need at one input, computed once: g(v), N_λ, rest relaxation.
+  const LugreParams& p = params_.lugre;
+  const ModelEffects& e = params_.effects;
+  const double v = in.drum_vel_in_per_s;
+  const bool forward = v >= 0.0;
+  const Levels l = levels(in, forward);
+  Frame f;
+  const double r = std::abs(v) / p.vs_in_per_s;
+  const VelocityEffect* ve = e.velocity ? &*e.velocity : nullptr;
+  const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
+  f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
+  f.tension = l.tension;
+  if (e.residual_static) {
+    const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
+    f.relax = std::exp(-q * q) / e.residual_static->time_constant_s;
+    if (f.relax > 0.0) {
+      // S(z_r) N_λ = ±ρ Fc of the loaded direction.
+      const double rho = e.residual_static->ratio;
+      const double fc_pos = forward ? l.fc : levels(in, true).fc;
+      const double fc_neg = forward ? levels(in, false).fc : l.fc;
+      f.target_pos = bristle_for_force(rho * fc_pos / f.tension);
+      f.target_neg = bristle_for_force(-rho * fc_neg / f.tension);
+    }
+  }
+  return f;
+}
+
+double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
+  const double y = f.tension * spring_force_kip(z) / f.g;  // force ratio
+  const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
+  const double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
+  double rate = v - std::abs(v) * shaped;
+  if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
+  return rate;
+}
+
+double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
+  const LugreParams& p = params_.lugre;
+  return f.tension * spring_force_kip(z) + p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
+         p.sigma2_kip_s_per_in * v;
+}
+
+double BrfdModel::bristle_rate(double z_in, const DamperInput& in) const {
+  const double v = in.drum_vel_in_per_s;
+  if (has_effects_) return rate_in_frame(z_in, v, frame(in));
+  return v - params_.lugre.sigma0_kip_per_in * std::abs(v) / stribeck_kip(in) * z_in;  // Eq. (1)
+}
+
+double BrfdModel::force_kip(double z_in, const DamperInput& in) const {
+  const LugreParams& p = params_.lugre;
+  if (has_effects_) return force_in_frame(z_in, in.drum_vel_in_per_s, frame(in));
+  return p.sigma0_kip_per_in * z_in + p.sigma1_kip_s_per_in * bristle_rate(z_in, in) +
+         p.sigma2_kip_s_per_in * in.drum_vel_in_per_s;  // Eq. (3)
+}
+
+double BrfdModel::step(const DamperInput& in, double dt_s) {
+  if (has_effects_) return step_with_effects(in, dt_s);
+  const double v = in.drum_vel_in_per_s;
+  if (v != 0.0) {
+    // Eq. (1) with v constant: dz/dt = v - a z, a = σ0|v|/g(v) > 0.
+    const double a = params_.lugre.sigma0_kip_per_in * std::abs(v) / stribeck_kip(in);
+    const double z_steady = v / a;
+    const double decay = std::exp(-a * dt_s);
+    z_in_ = z_steady + (z_in_ - z_steady) * decay;
+  }
+  return force_kip(z_in_, in);
+}
+
+double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
+  const ModelEffects& e = params_.effects;
+  if (e.actuator_lag) {
+    const double tau = e.actuator_lag->time_constant_s;
+    const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;
+    lag1_in_ = in.actuator1_in + (lag1_in_ - in.actuator1_in) * keep;
+    lag2_in_ = in.actuator2_in + (lag2_in_ - in.actuator2_in) * keep;
+  }
+  const double v = in.drum_vel_in_per_s;
+  const double speed = std::abs(v);
+  if (e.residual_static)
+    slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);
+  const Frame f = frame(in);
+  const double relax = f.relax;  // w / τ_r of residual_static, 1/s
+  const double target_pos = f.target_pos, target_neg = f.target_neg;
+  if (v == 0.0 && relax == 0.0) return force_in_frame(z_in_, v, f);
+
+  const double slack = e.backlash ? e.backlash->slack_in : 0.0;
+  const double k = speed / f.g;  // |v| / g(v)
+  const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
+  if (e.transition_shape && e.transition_shape->exponent != 1.0) {
+    // Nonlinear bristle law: RK4 sub-steps, enough to keep h × (largest rate constant) <= 0.25.
+    const double alpha = e.transition_shape->exponent;
+    const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
+    const double stiff = k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 + relax;
+    const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
+    const double h = dt_s / n;
+    double z = z_in_;
+    for (int i = 0; i < n; ++i) {
+      const double k1 = rate_in_frame(z, v, f), k2 = rate_in_frame(z + 0.5 * h * k1, v, f);
+      const double k3 = rate_in_frame(z + 0.5 * h * k2, v, f), k4 = rate_in_frame(z + h * k3, v, f);
+      z += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    z_in_ = z;
+    return force_in_frame(z_in_, v, f);
+  }
+  // dz/dt = c - a z on each piece: z > δ (band + loaded), 0 <= z <= δ, -δ <= z < 0 (slack),
+  // z < -δ (band - loaded). Exact solution per piece, chained at the boundaries ±δ and 0.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  // piece 0: z < -δ, 1: -δ <= z < 0, 2: 0 <= z <= δ, 3: z > δ (pieces 1, 2 empty when δ = 0).
+  auto piece_of = [slack](double z) { return z < -slack ? 0 : z < 0.0 ? 1 : z <= slack ? 2 : 3; };
+  int piece = piece_of(z_in_);
+  double z = z_in_;
+  double t_left = dt_s;
+  for (int segment = 0; segment < 8 && t_left > 0.0; ++segment) {
+    double a = relax, c = v, lo = -inf, hi = inf;
+    switch (piece) {
+      case 0: a += k * sn; c += -k * sn * slack + relax * target_neg; hi = -slack; break;
+      case 1: c += relax * target_neg; lo = -slack; hi = 0.0; break;
+      case 2: c += relax * target_pos; lo = 0.0; hi = slack; break;
+      default: a += k * sp; c += k * sp * slack + relax * target_pos; lo = slack; break;
+    }
+    const double u = c - a * z;  // dz/dt at the start of the piece
+    if (u == 0.0) break;
+    const double bound = u > 0.0 ? hi : lo;
+    double t_hit = inf;
+    if (std::isfinite(bound)) {
+      const double q = a * (bound - z) / u;  // z reaches the bound before its asymptote if q < 1
+      if (q < 1.0) t_hit = q < 1e-8 ? (bound - z) / u * (1.0 + 0.5 * q) : -std::log1p(-q) / a;
+    }
+    if (t_hit >= t_left) {
+      const double phi = a * t_left < 1e-12 ? t_left : -std::expm1(-a * t_left) / a;
+      z += u * phi;
+      t_left = 0.0;
+    } else {
+      z = bound;
+      t_left -= t_hit;
+      piece += u > 0.0 ? 1 : -1;
+      if (slack == 0.0 && (piece == 1 || piece == 2)) piece = u > 0.0 ? 3 : 0;
+    }
+  }
+  z_in_ = z;
+  return force_in_frame(z_in_, v, f);
+}
+
+std::string to_string(DamperKind kind) {
+  return kind == DamperKind::passive_lugre ? "passive_lugre" : "semiactive";
+}
+
+DamperKind damper_kind_from_string(const std::string& name) {
+  if (name == "passive_lugre") return DamperKind::passive_lugre;
+  if (name == "semiactive") return DamperKind::semiactive;
+  throw std::invalid_argument("unknown damper model '" + name +
+                              "' (expected passive_lugre or semiactive)");
+}
+
+}  // namespace damper

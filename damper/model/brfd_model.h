@@ -1,0 +1,152 @@
+#pragma once
+/// @file brfd_model.h
+/// The BRFD damper model: LuGre friction (Eqs. 1-3 of the BRFD paper, ../shared/seed) with
+/// direction-dependent static and kinetic friction, and the semi-active kinetic friction of
+/// Eq. (4) fed into the Stribeck function, Eq. (5). Units: kip, in, s.
+///
+/// The model is a pure function of its bristle state and its inputs; the same code serves
+/// the virtual substructure, `hybridsim damper predict`, `diagnose` and the SUNDIALS
+/// monolithic reference (bristle_rate() is the right-hand side of Eq. 1).
+
+#include "damper/model/effects.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace damper {
+
+/// LuGre parameters, Eqs. (1)-(3). Forward means drum velocity v >= 0.
+struct LugreParams {
+  double sigma0_kip_per_in = 60.0;       ///< aggregate bristle stiffness σ0
+  double sigma1_kip_s_per_in = 0.5;      ///< bristle micro-damping σ1
+  double sigma2_kip_s_per_in = 0.05;     ///< viscous friction σ2
+  double fs_fwd_kip = 2.4;               ///< static friction Fs, forward (magnitude)
+  double fs_bwd_kip = 2.4;               ///< static friction Fs, backward (magnitude)
+  double fc_fwd_kip = 2.0;               ///< kinetic friction Fc (= b of Eq. 4), forward
+  double fc_bwd_kip = 2.0;               ///< kinetic friction Fc (= b of Eq. 4), backward
+  double vs_in_per_s = 0.5;              ///< Stribeck velocity v_s
+};
+
+/// Semi-active part, Eq. (4): slopes m_ij (Table 1, kip/in) and scaling factors C_k (Table 2).
+/// Row i of `slopes_kip_per_in` is m_i1, m_i2 (i = 1..4 stored at index i-1).
+struct SemiActiveParams {
+  std::array<std::array<double, 2>, 4> slopes_kip_per_in{{{-0.14, -0.15},
+                                                          {-15.29, -13.00},
+                                                          {-16.66, -15.77},
+                                                          {-0.13, -0.15}}};
+  std::array<double, 4> scaling{{119.68, 2.10, 1.94, 123.31}};  ///< C_1..C_4 (Table 2)
+  double actuator1_initial_in = 0.655;   ///< x'_1: electric actuator 1 position at t = 0, in
+  double actuator2_initial_in = 0.8559;  ///< x'_2: electric actuator 2 position at t = 0, in
+  double fc_floor_kip = 0.05;            ///< Eq. (4) is clipped below at this kinetic friction
+};
+
+/// Optional b = F(v) of Eq. (4) ("for erratic or asymmetric excitations, b itself may be a
+/// function of drum velocity"): b per direction, piecewise linear in the speed |v| and held
+/// constant beyond the end points. Empty (the default) means b = fc_fwd_kip / fc_bwd_kip.
+struct KineticFrictionCurve {
+  std::vector<double> speed_in_per_s;  ///< strictly increasing, >= 0
+  std::vector<double> fwd_kip;         ///< b for v >= 0 at each speed, kip (> 0)
+  std::vector<double> bwd_kip;         ///< b for v < 0 at each speed, kip (> 0)
+  bool empty() const { return speed_in_per_s.empty(); }
+  /// b (kip) at drum velocity v; requires !empty(). Does not allocate.
+  double at(double v_in_per_s) const;
+};
+
+enum class DamperKind { passive_lugre, semiactive };
+
+/// Everything needed to build a BrfdModel.
+struct BrfdParams {
+  DamperKind kind = DamperKind::semiactive;
+  LugreParams lugre;
+  SemiActiveParams semiactive;
+  /// b = F(v), optional; when set it replaces fc_fwd_kip / fc_bwd_kip as b in both models.
+  KineticFrictionCurve b_of_velocity;
+  /// Physical extensions of the model (damper/model/effects.h: backlash, residual static force,
+  /// actuator lag, asymmetry, velocity dependence, pre-tension), all absent by default. Found
+  /// by `hybridsim diagnose` (docs/diagnose.md); config key `effects:`.
+  ModelEffects effects;
+};
+
+/// Inputs at one instant. Drum displacement/velocity in in and in/s; actuator positions in in.
+struct DamperInput {
+  double drum_disp_in = 0.0;
+  double drum_vel_in_per_s = 0.0;
+  double actuator1_in = 0.0;   ///< x_1 (ignored by passive LuGre)
+  double actuator2_in = 0.0;   ///< x_2 (ignored by passive LuGre)
+};
+
+/// The BRFD friction model with its bristle state z (in).
+class BrfdModel {
+ public:
+  explicit BrfdModel(const BrfdParams& params);
+
+  /// Advances the bristle state over dt_s with the input held constant and returns the
+  /// friction force (kip) at the end of the step, Eq. (3). The bristle ODE, Eq. (1), is
+  /// linear in z for constant v, so the step uses its exact exponential solution:
+  /// unconditionally stable for any σ0 (the bristle state is stiff at 1024 Hz).
+  /// With effects (params().effects) the ODE stays piecewise linear in z (backlash dead zone,
+  /// asymmetric stiffness, rest relaxation): the step chains the exact solutions of the pieces.
+  /// The actuator lag and the low-passed speed of residual_static are advanced here too.
+  double step(const DamperInput& in, double dt_s);
+
+  /// b of Eq. (4), kip: fc_fwd_kip / fc_bwd_kip by the sign of v, or b_of_velocity if set.
+  double base_kinetic_friction_kip(double v_in_per_s) const;
+  /// Kinetic friction Fc (kip, magnitude): the constant b per direction for passive LuGre,
+  /// Eq. (4) of the paper for the semi-active model (with effects: lagged actuator positions,
+  /// pre-tension and asymmetry factors).
+  double kinetic_friction_kip(const DamperInput& in) const;
+  /// Stribeck function g(v), Eqs. (2)/(5), kip (with effects: velocity effect).
+  double stribeck_kip(const DamperInput& in) const;
+  /// dz/dt of Eq. (1), in/s, for bristle state z (in). With effects it includes the backlash
+  /// dead zone, asymmetric stiffness and the rest relaxation; the actuator lag and the
+  /// low-passed speed are taken from the model's state (advanced only by step()).
+  double bristle_rate(double z_in, const DamperInput& in) const;
+  /// Friction force, Eq. (3), kip, for bristle state z (with effects: F = S(z) + σ1 dz/dt + σ2 v).
+  double force_kip(double z_in, const DamperInput& in) const;
+  /// Band spring force S(z), kip: σ0 z without effects (Eq. 3's first term).
+  double spring_force_kip(double z_in) const;
+  /// Bristle state whose spring force is f_kip (inverse of spring_force_kip; f = 0 gives z = 0).
+  double bristle_for_force(double f_kip) const;
+  /// Initial bristle state for a measured force f_kip at the start of a record: bristle_for_force,
+  /// except with backlash, where a force within 10 % of the smaller Fc places the state inside the
+  /// slack in proportion (a band at rest with almost no force need not be taut).
+  double initial_bristle_for_force(double f_kip) const;
+
+  double bristle_in() const { return z_in_; }
+  void set_bristle_in(double z_in) { z_in_ = z_in; }
+  /// z = 0 and the effect states back to their initial values.
+  void reset();
+  const BrfdParams& params() const { return params_; }
+
+ private:
+  struct Levels {
+    double fc, fs;   // kinetic and static friction (kip, magnitudes) of one direction
+    double tension;  // N_λ of the pretension effect (1 without it)
+  };
+  Levels levels(const DamperInput& in, bool forward) const;
+  struct Frame {
+    double g = 1.0;        // Stribeck function g(v), kip
+    double tension = 1.0;  // N_λ
+    double relax = 0.0;    // w / τ_r of residual_static, 1/s
+    double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
+  };
+  Frame frame(const DamperInput& in) const;
+  double rate_in_frame(double z, double v, const Frame& f) const;
+  double force_in_frame(double z, double v, const Frame& f) const;
+  double stiffness(bool positive_z) const;
+  double step_with_effects(const DamperInput& in, double dt_s);
+
+  BrfdParams params_;
+  bool has_effects_ = false;
+  double z_in_ = 0.0;
+  double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag
+  double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
+};
+
+/// Name of a DamperKind as used in configs ("passive_lugre", "semiactive").
+std::string to_string(DamperKind kind);
+/// Parses a DamperKind; throws std::invalid_argument naming the value.
+DamperKind damper_kind_from_string(const std::string& name);
+
+}  // namespace damper

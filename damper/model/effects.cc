@@ -1,0 +1,227 @@
+#include "damper/model/effects.h"
+
+#include "common/strict_yaml.h"
+
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace damper {
+
+std::string ModelEffects::names() const {
+  std::string s;
+  for (const EffectSpec& e : effect_library()) {
+    if (e.present(*this)) s += (s.empty() ? "" : ",") + e.name;
+  }
+  return s;
+}
+
+ModelEffects effects_from_yaml(const common::YamlSection& s) {
+  s.allow_only({"backlash", "residual_static", "actuator_lag", "asymmetry", "velocity", "pretension",
+                "self_energizing", "transition_shape"});
+  ModelEffects e;
+  if (s.has("backlash")) {
+    const common::YamlSection b = s.section("backlash");
+    b.allow_only({"slack_in"});
+    e.backlash = BacklashEffect{b.get_double_in("slack_in", 0.0, 2.0)};
+  }
+  if (s.has("residual_static")) {
+    const common::YamlSection r = s.section("residual_static");
+    r.allow_only({"ratio", "time_constant_s"});
+    ResidualStaticEffect x;
+    x.ratio = r.get_double_in("ratio", 0.0, 5.0);
+    x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
+    e.residual_static = x;
+  }
+  if (s.has("actuator_lag")) {
+    const common::YamlSection a = s.section("actuator_lag");
+    a.allow_only({"time_constant_s"});
+    e.actuator_lag = ActuatorLagEffect{a.get_double_in("time_constant_s", 0.0, 100.0)};
+  }
+  if (s.has("asymmetry")) {
+    const common::YamlSection a = s.section("asymmetry");
+    a.allow_only({"level", "stiffness"});
+    AsymmetryEffect x;
+    x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
+    x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
+    e.asymmetry = x;
+  }
+  if (s.has("velocity")) {
+    const common::YamlSection v = s.section("velocity");
+    v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in"});
+    VelocityEffect x;
+    x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
+    x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
+    e.velocity = x;
+  }
+  if (s.has("pretension")) {
+    const common::YamlSection p = s.section("pretension");
+    p.allow_only({"fs_share", "instant_share"});
+    PretensionEffect x;
+    x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
+    x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
+    e.pretension = x;
+  }
+  if (s.has("self_energizing")) {
+    const common::YamlSection p = s.section("self_energizing");
+    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in"});
+    SelfEnergizingEffect x;
+    x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
+    x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
+    e.self_energizing = x;
+  }
+  if (s.has("transition_shape")) {
+    const common::YamlSection t = s.section("transition_shape");
+    t.allow_only({"exponent"});
+    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 50.0)};
+  }
+  return e;
+}
+
+std::string effects_to_yaml(const ModelEffects& e) {
+  if (e.empty()) return "";
+  std::ostringstream o;
+  o << std::setprecision(8);
+  o << "effects:\n";
+  for (const EffectSpec& spec : effect_library()) {
+    if (!spec.present(e)) continue;
+    o << "  " << spec.name << ":\n";
+    const std::vector<double> theta = spec.get(e);
+    for (std::size_t k = 0; k < theta.size(); ++k)
+      o << "    " << spec.parameters[k].name << ": " << theta[k] << "\n";
+  }
+  return o.str();
+}
+
+namespace {
+
+template <typename Member, typename Effect>
+EffectSpec make_spec(std::string name, std::string title, std::string equation,
+                     std::vector<EffectParameter> parameters, Member member,
+                     std::function<Effect(const std::vector<double>&)> build,
+                     std::function<std::vector<double>(const Effect&)> read) {
+  EffectSpec s;
+  s.name = std::move(name);
+  s.title = std::move(title);
+  s.equation = std::move(equation);
+  s.parameters = std::move(parameters);
+  s.set = [member, build](ModelEffects& e, const std::vector<double>& theta) { e.*member = build(theta); };
+  s.get = [member, read](const ModelEffects& e) { return read(*(e.*member)); };
+  s.present = [member](const ModelEffects& e) { return static_cast<bool>(e.*member); };
+  s.remove = [member](ModelEffects& e) { (e.*member).reset(); };
+  return s;
+}
+
+std::vector<EffectSpec> build_library() {
+  std::vector<EffectSpec> lib;
+  lib.push_back(make_spec<std::optional<BacklashEffect> ModelEffects::*, BacklashEffect>(
+      "backlash", "band slack after reversal: force near zero over a drum travel 2*slack",
+      "S(z) = sigma0 * sign(z) * max(|z| - slack, 0); dz/dt = v - |v| S(z)/g(v); F = S(z) + sigma1 dz/dt + sigma2 v",
+      {{"slack_in", 0.0, 0.25, 0.0, 0.03, false}}, &ModelEffects::backlash,
+      std::function<BacklashEffect(const std::vector<double>&)>(
+          [](const std::vector<double>& t) { return BacklashEffect{t[0]}; }),
+      std::function<std::vector<double>(const BacklashEffect&)>(
+          [](const BacklashEffect& b) { return std::vector<double>{b.slack_in}; })));
+  lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
+      "residual_static", "residual static force after motion stops: at rest the force settles to ratio*Fc",
+      "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.2 s), S(z_r) = sign(z) ratio Fc",
+      {{"ratio", 0.0, 1.5, 1.0, 0.5, false}, {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true}},
+      &ModelEffects::residual_static,
+      std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        ResidualStaticEffect r;
+        r.ratio = t[0];
+        r.time_constant_s = t[1];
+        return r;
+      }),
+      std::function<std::vector<double>(const ResidualStaticEffect&)>(
+          [](const ResidualStaticEffect& r) { return std::vector<double>{r.ratio, r.time_constant_s}; })));
+  lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
+      "actuator_lag", "kinetic friction lags the electric actuator motion (first order)",
+      "Eq. (4) with x~_k: dx~_k/dt = (x_k - x~_k)/tau_a",
+      {{"time_constant_s", 0.0, 0.6, 0.0, 0.08, false}}, &ModelEffects::actuator_lag,
+      std::function<ActuatorLagEffect(const std::vector<double>&)>(
+          [](const std::vector<double>& t) { return ActuatorLagEffect{t[0]}; }),
+      std::function<std::vector<double>(const ActuatorLagEffect&)>(
+          [](const ActuatorLagEffect& a) { return std::vector<double>{a.time_constant_s}; })));
+  lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
+      "asymmetry", "direction asymmetry of friction levels and band stiffness",
+      "Fc, Fs x (1 +- level) forward/backward; sigma0 x (1 +- stiffness) for z >= 0 / z < 0",
+      {{"level", -0.5, 0.5, 0.0, 0.1, false}, {"stiffness", -0.8, 0.8, 0.0, 0.3, false}},
+      &ModelEffects::asymmetry,
+      std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        AsymmetryEffect a;
+        a.level = t[0];
+        a.stiffness = t[1];
+        return a;
+      }),
+      std::function<std::vector<double>(const AsymmetryEffect&)>(
+          [](const AsymmetryEffect& a) { return std::vector<double>{a.level, a.stiffness}; })));
+  lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
+      "velocity", "velocity dependence mismatch: Stribeck shape exponent and rate-dependent friction",
+      "g(v) = Fc + (Fs - Fc) exp(-|v/vs|^n) + c_v |v|",
+      {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true}, {"viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false}},
+      &ModelEffects::velocity,
+      std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        VelocityEffect v;
+        v.stribeck_exponent = t[0];
+        v.viscous_kip_s_per_in = t[1];
+        return v;
+      }),
+      std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
+        return std::vector<double>{v.stribeck_exponent, v.viscous_kip_s_per_in};
+      })));
+  lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
+      "pretension", "friction follows the band pre-tension set by the actuators (Fs too; band force scales at once)",
+      "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1)",
+      {{"fs_share", -1.0, 3.0, 0.0, 1.0, false}, {"instant_share", 0.0, 1.0, 0.0, 0.5, false}},
+      &ModelEffects::pretension,
+      std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        PretensionEffect p;
+        p.fs_share = t[0];
+        p.instant_share = t[1];
+        return p;
+      }),
+      std::function<std::vector<double>(const PretensionEffect&)>(
+          [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share}; })));
+  lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
+      "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut)",
+      "Fc, Fs x (1 + kappa_dir d), kappa_fwd for v >= 0, kappa_bwd for v < 0",
+      {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false}, {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false}},
+      &ModelEffects::self_energizing,
+      std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        SelfEnergizingEffect p;
+        p.drum_fwd_per_in = t[0];
+        p.drum_bwd_per_in = t[1];
+        return p;
+      }),
+      std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
+        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in};
+      })));
+  lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
+      "transition_shape", "sharper stick-to-slip transition (Dahl exponent of the bristle law)",
+      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent (LuGre: exponent = 1)",
+      {{"exponent", 1.0, 12.0, 1.0, 3.0, true}}, &ModelEffects::transition_shape,
+      std::function<TransitionShapeEffect(const std::vector<double>&)>(
+          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0]}; }),
+      std::function<std::vector<double>(const TransitionShapeEffect&)>(
+          [](const TransitionShapeEffect& a) { return std::vector<double>{a.exponent}; })));
+  return lib;
+}
+
+}  // namespace
+
+const std::vector<EffectSpec>& effect_library() {
+  static const std::vector<EffectSpec> lib = build_library();
+  return lib;
+}
+
+const EffectSpec& effect_spec(const std::string& name) {
+  std::string known;
+  for (const EffectSpec& s : effect_library()) {
+    if (s.name == name) return s;
+    known += " " + s.name;
+  }
+  throw std::invalid_argument("unknown effect '" + name + "' (known:" + known + ")");
+}
+
+}  // namespace damper

@@ -1,0 +1,151 @@
+#pragma once
+/// @file effects.h
+/// The effect library: physical extensions of the BRFD model (LuGre Eqs. 1-3 and the
+/// semi-active kinetic friction of Eqs. 4-5 of the BRFD paper, ../shared/seed), each with a
+/// few parameters. They address the error modes of the paper's Discussion (backlash after a
+/// reversal, residual static force, difficulty fitting LuGre) and a few more. Units: kip, in, s.
+///
+/// With all effects absent (the default) BrfdModel is exactly the paper's model. Notation:
+/// d drum displacement, v drum velocity, x_k actuator positions, z band/bristle state (in),
+/// b the base kinetic friction per direction, ΔFc the Eq. (4) increment (gain · (x − x')).
+///
+///  - backlash (slack_in = δ): band slack after a reversal. The band spring has a dead zone:
+///      S(z) = σ0 · D_δ(z),  D_δ(z) = sign(z) · max(|z| − δ, 0)
+///      dz/dt = v − |v| S(z) / g(v),   F = S(z) + σ1 dz/dt + σ2 v
+///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then rises.
+///  - residual_static (ratio = ρ, time_constant_s = τ_r): residual static force after motion
+///    stops. When the drum has been at rest (low-passed speed s̃ below v_rest) the band force
+///    settles towards ρ times the kinetic friction of the loaded direction:
+///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),  S(z_r) = sign(z) ρ Fc
+///      ds̃/dt = (|v| − s̃) / τ_s,  τ_s = 0.05 s, v_rest = 0.05 in/s (fixed); s̃(0) = 1000 in/s.
+///  - actuator_lag (time_constant_s = τ_a): the kinetic friction follows the actuator motion
+///    with a first-order lag: Eq. (4) uses x̃_k, dx̃_k/dt = (x_k − x̃_k)/τ_a, x̃_k(0) = x'_k.
+///  - asymmetry (level = a_F, stiffness = a_σ): direction asymmetry beyond per-direction Fc/Fs:
+///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
+///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0).
+///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v): velocity dependence:
+///      g(v) = Fc + (Fs − Fc) exp(−|v/v_s|^n) + c_v |v|   (paper: n = 2, c_v = 0)
+///  - pretension (fs_share = β, instant_share = λ): friction follows the band pre-tension set by
+///    the actuators. With N = (b + ΔFc)/b the tension ratio of Eq. (4):
+///      Fs = Fs0 (1 + β ΔFc / b);  band force F = N_λ S(z) + σ1 dz/dt + σ2 v,
+///      dz/dt = v − |v| N_λ S(z)/g(v),  N_λ = 1 + λ (N − 1)
+///    (λ: share of a tension change that scales the band force at once, as friction scales with
+///    normal force, instead of through the LuGre transition; steady sliding is unchanged).
+///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b): friction levels change with
+///    the drum rotation (the rotating drum draws the bands taut): Fc, Fs × (1 + κ_dir d),
+///    κ_f for v ≥ 0, κ_b for v < 0.
+///  - transition_shape (exponent = α): sharper stick-to-slip transition (Dahl's exponent). With
+///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
+///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation)
+///    Steady sliding is unchanged (|y| = 1). Stepped by RK4 sub-steps (the ODE is no longer linear).
+///
+/// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
+/// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace common {
+class YamlSection;
+}
+
+namespace damper {
+
+/// Band slack after reversal (see file comment).
+struct BacklashEffect {
+  double slack_in = 0.0;  ///< δ: half the drum travel over which the force sits near zero, in
+};
+/// Residual static force after motion stops (see file comment).
+struct ResidualStaticEffect {
+  double ratio = 1.0;            ///< ρ: force at rest / kinetic friction of the loaded direction
+  double time_constant_s = 1.0;  ///< τ_r: settling time at rest, s (> 0)
+  static constexpr double kRestSpeedInPerS = 0.05;  ///< v_rest
+  static constexpr double kSpeedFilterS = 0.05;     ///< τ_s of the low-passed speed s̃
+};
+/// First-order lag of the kinetic friction behind the actuator motion (see file comment).
+struct ActuatorLagEffect {
+  double time_constant_s = 0.0;  ///< τ_a, s (>= 0; 0 = no lag)
+};
+/// Direction asymmetry (see file comment).
+struct AsymmetryEffect {
+  double level = 0.0;      ///< a_F: friction levels × (1 ± a_F), forward +; |a_F| < 1
+  double stiffness = 0.0;  ///< a_σ: band stiffness σ0 × (1 ± a_σ) by the sign of z; |a_σ| < 1
+};
+/// Velocity dependence beyond Eq. (2) (see file comment).
+struct VelocityEffect {
+  double stribeck_exponent = 2.0;     ///< n of exp(−|v/v_s|^n); 2 in the paper
+  double viscous_kip_s_per_in = 0.0;  ///< c_v: rate dependence of the friction capacity g(v)
+};
+/// Friction following the band pre-tension set by the actuators (see file comment).
+struct PretensionEffect {
+  double fs_share = 0.0;       ///< β: share of the Eq. (4) tension change that Fs follows
+  double instant_share = 0.0;  ///< λ: share of the tension change scaling the band force at once, 0..1
+};
+/// Friction levels changing with the drum rotation (see file comment).
+struct SelfEnergizingEffect {
+  double drum_fwd_per_in = 0.0;  ///< κ_f: relative change of Fc, Fs per in of drum displacement, v >= 0
+  double drum_bwd_per_in = 0.0;  ///< κ_b: same for v < 0
+};
+
+/// Shape of the stick-to-slip transition (see file comment).
+struct TransitionShapeEffect {
+  double exponent = 1.0;  ///< α >= 1 (1: LuGre)
+};
+
+/// The effects switched on in a model (all absent by default: the paper's model).
+struct ModelEffects {
+  std::optional<BacklashEffect> backlash;
+  std::optional<ResidualStaticEffect> residual_static;
+  std::optional<ActuatorLagEffect> actuator_lag;
+  std::optional<AsymmetryEffect> asymmetry;
+  std::optional<VelocityEffect> velocity;
+  std::optional<PretensionEffect> pretension;
+  std::optional<SelfEnergizingEffect> self_energizing;
+  std::optional<TransitionShapeEffect> transition_shape;
+
+  bool empty() const {
+    return !backlash && !residual_static && !actuator_lag && !asymmetry && !velocity && !pretension &&
+           !self_energizing && !transition_shape;
+  }
+  /// Names of the effects switched on, in library order ("" when none), comma separated.
+  std::string names() const;
+};
+
+/// Reads the optional `effects:` block of a damper config. Strict: unknown effects or keys,
+/// wrong types and out-of-range values are ConfigErrors naming file, line and key.
+ModelEffects effects_from_yaml(const common::YamlSection& section);
+/// Writes the `effects:` block (empty string when no effect is on).
+std::string effects_to_yaml(const ModelEffects& effects);
+
+/// One fitted parameter of an effect.
+struct EffectParameter {
+  std::string name;   ///< YAML key, e.g. "slack_in"
+  double lo, hi;      ///< search bounds
+  double null_value;  ///< the value at which the effect vanishes (with the others at theirs)
+  double start;       ///< a starting point for the optimizer besides the null value
+  bool log_scale;     ///< search log10 of the value (lo > 0)
+};
+
+/// One candidate effect of the library.
+struct EffectSpec {
+  std::string name;        ///< "backlash", ...
+  std::string title;       ///< one line, for reports
+  std::string equation;    ///< the equation in text form, for reports
+  std::vector<EffectParameter> parameters;
+  /// Switches the effect on in `effects` with parameter values `theta` (size = parameters).
+  std::function<void(ModelEffects& effects, const std::vector<double>& theta)> set;
+  /// Parameter values of the effect in `effects` (requires it on).
+  std::function<std::vector<double>(const ModelEffects& effects)> get;
+  std::function<bool(const ModelEffects& effects)> present;
+  std::function<void(ModelEffects& effects)> remove;
+};
+
+/// The library: backlash, residual_static, actuator_lag, asymmetry, velocity, pretension,
+/// self_energizing, transition_shape.
+const std::vector<EffectSpec>& effect_library();
+/// The spec named `name`; throws std::invalid_argument listing the known names.
+const EffectSpec& effect_spec(const std::string& name);
+
+}  // namespace damper

@@ -1,0 +1,52 @@
+// hybridsim: the hybrid-simulation server. Subcommands:
+//   run --config FILE        one hybrid run (server/run/hybrid_run.h)
+//   bench                    LCM and step round trips, in-process speed (server/run/bench.h)
+//   damper ...               damper model tools (server/cli/damper_commands.h)
+//   batch ...                many records (server/cli/batch_commands.h)
+//   diagnose ...             model-discrepancy workflow (server/cli/diagnose_commands.h)
+// Each command group lives in server/cli/<group>_commands.cc.
+#include "server/run/bench.h"
+#include "server/run/hybrid_run.h"
+#include "server/cli/damper_commands.h"
+#include "server/cli/batch_commands.h"
+#include "server/cli/diagnose_commands.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"hybridsim: real-time hybrid simulation of shear buildings with a BRFD damper (units kip, in, s)"};
+  app.require_subcommand(1);
+
+  std::string config_path;
+  std::string out_dir;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "run one hybrid simulation from a config");
+  run->add_option("--config", config_path, "run config YAML (e.g. configs/three-story.yaml)")->required();
+  run->add_option("--out", out_dir, "results folder (overrides output.dir)");
+  run->add_flag("--quiet", quiet, "print only the results folder");
+
+  server::BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand("bench", "print LCM and hybrid-step round trips and in-process speed");
+  bench->add_option("--three-story", bench_options.three_story_config, "3-story config");
+  bench->add_option("--ten-story", bench_options.ten_story_config, "10-story config");
+  bench->add_option("--round-trips", bench_options.round_trips, "LCM round trips to time");
+
+  add_damper_commands(app);
+  add_batch_commands(app);
+  add_diagnose_commands(app);
+
+  int code = 0;
+  run->callback([&] { code = server::run_command(config_path, out_dir, quiet); });
+  bench->callback([&] { code = server::bench_command(bench_options); });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim: " << e.what() << "\n";
+    return 2;
+  }
+  return code;
+}

@@ -1,0 +1,128 @@
+#include "server/run/bench.h"
+
+#include "server/run/hybrid_run.h"
+#include "common/process.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <vector>
+
+namespace server {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(p / 100.0 * (v.size() - 1) + 0.5));
+  return v[i];
+}
+
+std::string temp_dir(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("hybridsim-bench-" + std::to_string(getpid())) / name;
+  fs::create_directories(p);
+  return p.string();
+}
+
+/// Runs a config in-process (damper model called directly); returns simulated time over the
+/// step loop's wall time, and in *end_to_end the same with all results written to disk.
+double inprocess_x_realtime(const std::string& config_path, long* steps, double* end_to_end) {
+  RunConfig config = load_run_config(config_path);
+  config.output.dir = temp_dir(config.name + "-inprocess");
+  InProcessSubstructure sub(config.damper_model);
+  const RunSummary s = run_hybrid(config, sub, "bench-inprocess");
+  if (s.status != "ok") throw std::runtime_error("in-process bench run failed: " + s.error);
+  *steps = s.steps;
+  *end_to_end = s.sim_time_s / s.wall_s;
+  return s.sim_time_s / s.loop_wall_s;
+}
+
+}  // namespace
+
+int bench_command(const BenchOptions& options) {
+  try {
+    RunConfig three = load_run_config(options.three_story_config);
+    if (three.transport.private_netns && !messages::in_private_network_namespace())
+      messages::enter_private_network_namespace();
+
+    // 1. Raw LCM round trip: the same drift_command_t / force_feedback_t pair, answered at
+    //    once by brfd-substructure --echo (no damper model).
+    LcmLinkSettings link;
+    link.url = three.transport.url;
+    link.lab_network = three.transport.lab_network;
+    link.channels.prefix = "BENCH_ECHO_";
+    link.step_timeout_s = 1.0;
+    std::vector<double> raw_us;
+    {
+      ChildProcess echo(sibling_executable(three.damper.executable),
+                        {"--echo", "--url", link.url, "--channel-prefix", link.channels.prefix,
+                         "--run-id", "bench-echo"},
+                        "");
+      LcmSubstructure sub(link);
+      sub.keep_round_trips(true);
+      sub.start("bench-echo", 1, three.dt_s);
+      SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)};
+      Eigen::VectorXd d = Eigen::VectorXd::Zero(1), v = Eigen::VectorXd::Zero(1);
+      for (int i = 0; i < options.round_trips; ++i) {
+        d[0] = 1e-3 * i;
+        sub.exchange(i, i * three.dt_s, d, v, reply);
+      }
+      sub.stop(false, "bench done");
+      echo.wait_or_kill(2.0);
+      raw_us = sub.round_trip_us();
+    }
+
+    // 2. Hybrid step round trip: a real 3-story run over LCM with the virtual BRFD.
+    std::vector<double> step_us;
+    {
+      RunConfig c = three;
+      c.output.dir = temp_dir("three-story-lcm");
+      c.transport.write_lcm_log = false;
+      c.transport.channel_prefix = "BENCH_RUN_";
+      link.channels.prefix = c.transport.channel_prefix;
+      ChildProcess child = spawn_substructure(c, c.output.dir, "bench-run", "");
+      LcmSubstructure sub(link);
+      sub.keep_round_trips(true);
+      const RunSummary s = run_hybrid(c, sub, "bench-run");
+      child.wait_or_kill(2.0);
+      if (s.status != "ok") throw std::runtime_error("LCM bench run failed: " + s.error);
+      step_us = sub.round_trip_us();
+      std::printf("3-story over LCM: %ld steps, %.2f s simulated in %.2f s wall (%.1fx real time)\n",
+                  s.steps, s.sim_time_s, s.wall_s, s.sim_time_s / s.wall_s);
+    }
+
+    // 3. In-process speed.
+    long steps3 = 0, steps10 = 0;
+    double x3_disk = 0.0, x10_disk = 0.0;
+    const double x3 = inprocess_x_realtime(options.three_story_config, &steps3, &x3_disk);
+    const double x10 = inprocess_x_realtime(options.ten_story_config, &steps10, &x10_disk);
+    fs::remove_all(fs::temp_directory_path() / ("hybridsim-bench-" + std::to_string(getpid())));
+
+    std::printf("raw LCM round trip (%zu): p50 %.1f us, p99 %.1f us, max %.1f us\n", raw_us.size(),
+                percentile(raw_us, 50), percentile(raw_us, 99), percentile(raw_us, 100));
+    std::printf("hybrid step round trip over LCM (%zu): p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                step_us.size(), percentile(step_us, 50), percentile(step_us, 99), percentile(step_us, 100));
+    std::printf("in-process 3-story: %ld steps at dt %.6f s: step loop %.0fx real time, %.0fx with the CSV on disk\n",
+                steps3, three.dt_s, x3, x3_disk);
+    std::printf("in-process 10-story: %ld steps: step loop %.0fx real time, %.0fx with the CSV on disk\n", steps10,
+                x10, x10_disk);
+    std::printf("step_p99 / raw_p99 = %.2f (target <= 1.5); 10-story x real time %.0f (target >= 2000)\n",
+                percentile(step_us, 99) / percentile(raw_us, 99), x10);
+    std::printf("lcm_rtt_p50_us=%.1f lcm_rtt_p99_us=%.1f step_rtt_p50_us=%.1f step_rtt_p99_us=%.1f "
+                "inprocess_ten_story_x_realtime=%.0f\n",
+                percentile(raw_us, 50), percentile(raw_us, 99), percentile(step_us, 50),
+                percentile(step_us, 99), x10);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim bench: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace server

@@ -1,0 +1,367 @@
+#include "server/run/hybrid_run.h"
+
+#include "common/strict_yaml.h"
+#include "damper/model/brfd_config.h"
+#include "damper/physical/realtime.h"
+#include "damper/physical/run_key.h"
+#include "server/run/csv_writer.h"
+#include "common/process.h"
+#include "structure/cr_integrator.h"
+#include "structure/energy.h"
+#include "structure/ground_motion.h"
+#include "structure/shear_building.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace server {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> time_history_columns(int stories, int dampers) {
+  std::vector<std::string> c{"time_s", "ground_accel_g"};
+  for (int i = 1; i <= stories; ++i) c.push_back("floor" + std::to_string(i) + "_disp_in");
+  for (int i = 1; i <= stories; ++i) c.push_back("floor" + std::to_string(i) + "_abs_accel_g");
+  for (int i = 1; i <= stories; ++i) c.push_back("story" + std::to_string(i) + "_drift_in");
+  for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_drum_disp_in");
+  for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_force_kip");
+  return c;
+}
+
+nlohmann::json to_json(const Eigen::VectorXd& v) {
+  return nlohmann::json(std::vector<double>(v.data(), v.data() + v.size()));
+}
+
+std::string make_run_id(const std::string& name) {
+  return name + "-" + std::to_string(messages::now_utime()) + "-" + std::to_string(getpid());
+}
+
+/// Physical mode: adds the substructure's tracking indicators and safety record to
+/// summary.json and prints them.
+void report_physical(const fs::path& out, const std::string& summary_path, bool quiet) {
+  try {
+    nlohmann::json summary, tracking, safety;
+    std::ifstream(summary_path) >> summary;
+    if (fs::exists(out / "tracking.json")) std::ifstream(out / "tracking.json") >> tracking;
+    if (fs::exists(out / "safety.json")) std::ifstream(out / "safety.json") >> safety;
+    summary["physical"] = {{"tracking", tracking}, {"safety", safety}};
+    std::ofstream(summary_path) << std::setw(2) << summary << "\n";
+    if (!tracking.is_null() && !quiet) {
+      std::cout << std::setprecision(4) << "tracking: delay " << tracking.value("delay_ms", 0.0) << " ms, NRMS error "
+                << tracking.value("nrms_error_pct", 0.0) << " %, peak error " << tracking.value("peak_error_in", 0.0)
+                << " in (ATS " << (tracking["ats"].value("enabled", false) ? "on" : "off") << ", a1/a0 = "
+                << tracking["ats"].value("equivalent_delay_ms", 0.0) << " ms)\n";
+    }
+    if (!safety.is_null() && !quiet) {
+      std::cout << "safety: " << safety.value("status", std::string("?"))
+                << (safety.value("reason", std::string()).empty() ? "" : " (" + safety.value("reason", std::string()) + ")")
+                << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: warning: cannot report the physical run's tracking: " << e.what() << "\n";
+  }
+}
+
+}  // namespace
+
+RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id) {
+  using structure::kGravity_in_per_s2;
+  const structure::ShearBuilding building(config.building);
+  const structure::GroundMotion record = structure::read_ground_motion(config.record.path, config.record.scale);
+  const int n = building.num_stories();
+  const int nd = building.num_dampers();
+  const double dt = config.dt_s;
+  const double duration = config.record.duration_s > 0 ? config.record.duration_s : record.duration_s();
+  const long num_steps = static_cast<long>(std::floor(duration / dt + 1e-9));
+  const Eigen::MatrixXd& gamma = building.damper_gamma();
+
+  RunSummary s;
+  s.pga_g = record.pga_g();
+  s.modal_periods_s = building.modal().period_s;
+  s.peak_drift_in = Eigen::VectorXd::Zero(n);
+  s.residual_drift_in = Eigen::VectorXd::Zero(n);
+  s.peak_floor_accel_g = Eigen::VectorXd::Zero(n);
+  s.peak_force_kip = Eigen::VectorXd::Zero(nd);
+  s.damper_energy_kip_in = Eigen::VectorXd::Zero(nd);
+
+  fs::create_directories(config.output.dir);
+  CsvWriter csv((fs::path(config.output.dir) / "time_history.csv").string(), time_history_columns(n, nd),
+                num_steps / config.output.every_n_steps + 1);
+
+  structure::CrIntegrator cr(building, dt);
+  structure::EnergyLedger energy(building);
+  SubstructureReply reply{Eigen::VectorXd::Zero(nd), Eigen::VectorXd::Zero(nd)};
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(nd);       // damper forces at the current step
+  Eigen::VectorXd drum = Eigen::VectorXd::Zero(nd);
+  Eigen::VectorXd drum_vel = Eigen::VectorXd::Zero(nd);
+  Eigen::VectorXd drift(n);
+  // Per-damper dissipation ∫F_k·d(drum_k), trapezoidal like the ledger's total.
+  Eigen::VectorXd energy_per_damper = Eigen::VectorXd::Zero(nd);
+  Eigen::VectorXd damper_power = Eigen::VectorXd::Zero(nd), damper_power_prev = Eigen::VectorXd::Zero(nd);
+  Eigen::VectorXd abs_accel_g(n);
+
+  auto write_row = [&](double t, double ag_in_s2) {
+    csv.add(t);
+    csv.add(ag_in_s2 / kGravity_in_per_s2);
+    const Eigen::VectorXd& x = cr.displacement_in();
+    for (int i = 0; i < n; ++i) csv.add(x[i]);
+    for (int i = 0; i < n; ++i) csv.add(abs_accel_g[i]);
+    for (int i = 0; i < n; ++i) csv.add(drift[i]);
+    for (int k = 0; k < nd; ++k) csv.add(reply.measured_drum_in[k]);
+    for (int k = 0; k < nd; ++k) csv.add(force[k]);
+    csv.end_row();
+  };
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  try {
+    substructure.start(run_id, nd, dt);
+    double ag = record.accel_in_per_s2(0.0);
+    cr.initialize(ag, force);
+    energy.start(cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
+    drift.setZero();
+    abs_accel_g = (cr.acceleration_in_per_s2().array() + ag) / kGravity_in_per_s2;
+    write_row(0.0, ag);
+    for (long i = 0; i < num_steps; ++i) {
+      const double t_next = (i + 1) * dt;
+      cr.predict();  // x₊, v₊ explicit: known before the damper force is needed
+      drum.noalias() = gamma.transpose() * cr.next_displacement_in();
+      drum_vel.noalias() = gamma.transpose() * cr.next_velocity_in_per_s();
+      substructure.exchange(i + 1, t_next, drum, drum_vel, reply);
+      force = reply.force_kip;
+      ag = record.accel_in_per_s2(t_next);
+      cr.complete(ag, force);
+      energy.add_step(dt, cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
+      damper_power = force.cwiseProduct(drum_vel);  // committed velocity is v₊: drum_vel still holds Γᵀv₊
+      energy_per_damper += 0.5 * dt * (damper_power + damper_power_prev);
+      damper_power_prev = damper_power;
+
+      const Eigen::VectorXd& x = cr.displacement_in();
+      drift[0] = x[0];
+      for (int j = 1; j < n; ++j) drift[j] = x[j] - x[j - 1];
+      abs_accel_g = (cr.acceleration_in_per_s2().array() + ag) / kGravity_in_per_s2;
+      s.peak_drift_in = s.peak_drift_in.cwiseMax(drift.cwiseAbs());
+      s.peak_floor_accel_g = s.peak_floor_accel_g.cwiseMax(abs_accel_g.cwiseAbs());
+      s.peak_force_kip = s.peak_force_kip.cwiseMax(force.cwiseAbs());
+      if ((i + 1) % config.output.every_n_steps == 0) write_row(t_next, ag);
+      s.steps = i + 1;
+      s.sim_time_s = t_next;
+      if ((i + 1) % config.output.flush_every_steps == 0) csv.hand_over();
+    }
+    substructure.stop(false, "record finished");
+  } catch (const std::exception& e) {
+    s.status = "failed";
+    s.error = e.what();
+    try {
+      substructure.stop(true, s.error);
+    } catch (const std::exception&) {
+    }
+  }
+  s.loop_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  csv.finish();
+  if (s.status == "ok" && !csv.error().empty()) {
+    s.status = "failed";
+    s.error = csv.error();
+  }
+  s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  s.residual_drift_in = building.interstory_drift(cr.displacement_in());
+  s.damper_energy_kip_in = energy_per_damper;
+  s.input_energy_kip_in = energy.input_kip_in();
+  s.kinetic_energy_kip_in = energy.kinetic_kip_in();
+  s.strain_energy_kip_in = energy.strain_kip_in();
+  s.inherent_damping_energy_kip_in = energy.inherent_damping_kip_in();
+  s.energy_balance_error = energy.balance_error();
+  return s;
+}
+
+void write_summary_json(const RunSummary& s, const RunConfig& config, const std::string& path) {
+  nlohmann::json j;
+  j["run"] = config.name;
+  j["config"] = config.source_file;
+  j["record"] = config.record.path;
+  j["scale"] = config.record.scale;
+  j["status"] = s.status;
+  j["error"] = s.error;
+  j["steps"] = s.steps;
+  j["dt_s"] = config.dt_s;
+  j["output_every_n_steps"] = config.output.every_n_steps;
+  j["sim_time_s"] = s.sim_time_s;
+  j["wall_s"] = s.wall_s;
+  j["step_loop_wall_s"] = s.loop_wall_s;
+  j["pga_g"] = s.pga_g;
+  j["modal_periods_s"] = to_json(s.modal_periods_s);
+  j["peak_drift_in"] = to_json(s.peak_drift_in);
+  j["residual_drift_in"] = to_json(s.residual_drift_in);
+  j["peak_floor_accel_g"] = to_json(s.peak_floor_accel_g);
+  j["peak_damper_force_kip"] = to_json(s.peak_force_kip);
+  j["damper_energy_kip_in"] = to_json(s.damper_energy_kip_in);
+  j["energy_kip_in"] = {{"input", s.input_energy_kip_in},
+                        {"kinetic", s.kinetic_energy_kip_in},
+                        {"strain", s.strain_energy_kip_in},
+                        {"inherent_damping", s.inherent_damping_energy_kip_in},
+                        {"damper", s.damper_energy_kip_in.sum()},
+                        {"balance_error", s.energy_balance_error}};
+  std::ofstream f(path);
+  f << std::setw(2) << j << "\n";
+}
+
+std::string format_summary(const RunSummary& s) {
+  std::ostringstream o;
+  o << std::setprecision(4);
+  o << "status: " << s.status << (s.error.empty() ? "" : " (" + s.error + ")") << "\n";
+  o << "steps: " << s.steps << "  simulated: " << s.sim_time_s << " s  wall: " << s.wall_s << " s\n";
+  o << "PGA: " << s.pga_g << " g   modal periods (s):";
+  for (int i = 0; i < s.modal_periods_s.size(); ++i) o << " " << s.modal_periods_s[i];
+  o << "\n";
+  for (int i = 0; i < s.peak_drift_in.size(); ++i)
+    o << "story " << i + 1 << ": peak drift " << s.peak_drift_in[i] << " in, residual "
+      << s.residual_drift_in[i] << " in, floor peak abs accel " << s.peak_floor_accel_g[i] << " g\n";
+  for (int k = 0; k < s.peak_force_kip.size(); ++k)
+    o << "damper " << k + 1 << ": peak force " << s.peak_force_kip[k] << " kip, energy dissipated "
+      << s.damper_energy_kip_in[k] << " kip-in\n";
+  o << "energy (kip-in): input " << s.input_energy_kip_in << " = kinetic " << s.kinetic_energy_kip_in
+    << " + strain " << s.strain_energy_kip_in << " + inherent damping "
+    << s.inherent_damping_energy_kip_in << " + damper " << s.damper_energy_kip_in.sum()
+    << "  (balance error " << 100.0 * s.energy_balance_error << " %)\n";
+  return o.str();
+}
+
+ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
+                                const std::string& run_id, const std::string& log_path) {
+  const std::string model_path = (fs::path(out_dir) / "damper-model.yaml").string();
+  {
+    std::ofstream model(model_path);
+    model << "# Damper model handed to the substructure. Units: kip, in, s.\n"
+          << damper::brfd_params_to_yaml(config.damper_model);
+  }
+  std::vector<std::string> args{"--model-config", model_path, "--url", config.transport.url,
+                                "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id};
+  if (config.transport.lab_network) args.push_back("--lab-network");
+  if (config.damper.mode == "physical") {
+    const std::string physical_path = (fs::path(out_dir) / "physical.yaml").string();
+    std::ofstream(physical_path) << "# rig block of the run config, for brfd-substructure --mode physical\n"
+                                 << damper::physical::physical_settings_to_yaml(config.rig);
+    args.insert(args.end(), {"--mode", "physical", "--physical-config", physical_path, "--key-file",
+                             physical_key_path(config, out_dir), "--results-dir", out_dir});
+  }
+  return ChildProcess(sibling_executable(config.damper.executable), args, log_path);
+}
+
+std::string physical_key_path(const RunConfig& config, const std::string& out_dir) {
+  return config.rig.rig.key_file.empty() ? (fs::path(out_dir) / "run.key").string() : config.rig.rig.key_file;
+}
+
+ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
+                       const std::string& log_path) {
+  std::vector<std::string> args{"--config", config.rig.rig.config, "--url", config.transport.url,
+                                "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id,
+                                "--key-file", physical_key_path(config, out_dir), "--log-dir", out_dir};
+  if (config.transport.lab_network) args.push_back("--lab-network");
+  return ChildProcess(sibling_executable(config.rig.rig.executable), args, log_path);
+}
+
+int run_command(const std::string& config_path, const std::string& output_dir_override, bool quiet) {
+  RunConfig config;
+  try {
+    config = load_run_config(config_path);
+    if (!output_dir_override.empty()) config.output.dir = output_dir_override;
+    structure::read_ground_motion(config.record.path, config.record.scale);  // fail early on a bad record
+    structure::ShearBuilding check(config.building);
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: " << e.what() << "\n";
+    return 2;
+  }
+  fs::create_directories(config.output.dir);
+  const fs::path out(config.output.dir);
+  {
+    std::ofstream eff(out / "effective-config.yaml");
+    eff << run_config_to_yaml(config);
+  }
+  const std::string run_id = make_run_id(config.name);
+  const bool physical = config.damper.mode == "physical";
+  const bool local_rig = physical && config.rig.rig.launch == "local" && config.transport.kind == "lcm";
+  if (local_rig) {
+    // Check the emulator's config before anything runs, and give the run its own HMAC key.
+    const std::string check_log = (out / "rig.log").string();
+    fs::remove(check_log);
+    ChildProcess check(sibling_executable(config.rig.rig.executable), {"--config", config.rig.rig.config, "--check-config"},
+                       check_log);
+    if (check.wait_or_kill(10.0) != 0) {
+      std::ifstream f(check_log);
+      std::cerr << "hybridsim run: rig emulator config " << config.rig.rig.config << " is not usable:\n" << f.rdbuf();
+      return 2;
+    }
+    fs::remove(check_log);
+    if (config.rig.rig.key_file.empty()) {
+      try {
+        damper::physical::write_key_file(physical_key_path(config, out.string()), damper::physical::generate_run_key());
+      } catch (const std::exception& e) {
+        std::cerr << "hybridsim run: " << e.what() << "\n";
+        return 2;
+      }
+    }
+  }
+
+  RunSummary summary;
+  try {
+    if (config.transport.kind == "in_process") {
+      InProcessSubstructure sub(config.damper_model);
+      summary = run_hybrid(config, sub, run_id);
+    } else {
+      if (config.transport.private_netns && !messages::in_private_network_namespace()) {
+        messages::enter_private_network_namespace();
+      }
+      LcmLinkSettings link;
+      link.url = config.transport.url;
+      link.lab_network = config.transport.lab_network;
+      link.channels.prefix = config.transport.channel_prefix;
+      link.step_timeout_s = config.transport.step_timeout_s;
+      link.start_timeout_s = config.transport.start_timeout_s;
+      if (config.transport.write_lcm_log) link.log_path = (out / "run.lcmlog").string();
+      // Physical: the step loop is part of the real-time loop with the rig (below the
+      // substructure's priority); before LCM starts its receive thread, which inherits it.
+      if (physical) damper::physical::enter_realtime(std::max(0, config.rig.realtime_priority - 10), "hybridsim");
+      LcmSubstructure sub(link);
+      ChildProcess rig, child;
+      if (local_rig) rig = spawn_rig(config, out.string(), run_id, (out / "rig.log").string());
+      if (config.damper.launch == "spawn") {
+        child = spawn_substructure(config, out.string(), run_id, (out / "substructure.log").string());
+      }
+      summary = run_hybrid(config, sub, run_id);
+      if (config.damper.launch == "spawn") {
+        // Physical: the substructure first ramps the rig out to its safe state.
+        const int code = child.wait_or_kill(physical ? 10.0 : 2.0);
+        if (code != 0 && summary.status == "ok") {
+          std::cerr << "hybridsim run: warning: substructure exited with code " << code << "\n";
+        }
+      }
+      if (local_rig) {
+        const int code = rig.wait_or_kill(5.0);
+        if (code != 0) std::cerr << "hybridsim run: note: brfd-rig exited with code " << code << " (see rig.log)\n";
+      }
+    }
+  } catch (const std::exception& e) {
+    summary.status = "failed";
+    summary.error = e.what();
+  }
+  write_summary_json(summary, config, (out / "summary.json").string());
+  if (!quiet) std::cout << format_summary(summary);
+  if (physical) report_physical(out, (out / "summary.json").string(), quiet);
+  std::cout << "results: " << fs::weakly_canonical(fs::absolute(out)).string() << "\n";
+  if (summary.status != "ok") {
+    std::cerr << "hybridsim run: run failed: " << summary.error << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace server

@@ -1,0 +1,79 @@
+#pragma once
+/// @file hybrid_run.h
+/// One hybrid simulation: the CR step loop (structure/cr_integrator.h) exchanging drum
+/// displacement and damper force with a Substructure once per step, writing results as it
+/// goes so that a failure keeps every step computed so far.
+///
+/// Files written to the output folder:
+///   time_history.csv     t, ground accel, floor displacements and absolute accelerations,
+///                        interstory drifts, damper drum displacements and forces (per step)
+///   summary.json         peaks, energies, status and error text
+///   effective-config.yaml  every value used (re-runnable with hybridsim run --config)
+///   damper-model.yaml    the damper model handed to the substructure process
+///   run.lcmlog           all LCM traffic of the run (replay with lcm-logplayer)
+
+#include "common/process.h"
+#include "server/run/run_config.h"
+#include "server/run/substructure.h"
+
+#include <Eigen/Dense>
+
+#include <string>
+
+namespace server {
+
+/// What a run produced; written to summary.json as well.
+struct RunSummary {
+  std::string status = "ok";          ///< "ok" or "failed"
+  std::string error;                  ///< why it failed
+  long steps = 0;                     ///< steps completed
+  double sim_time_s = 0.0;            ///< simulated time reached
+  double wall_s = 0.0;                ///< wall-clock time of the run, results on disk
+  double loop_wall_s = 0.0;           ///< wall-clock time of the step loop alone
+  double pga_g = 0.0;                 ///< peak ground acceleration of the (scaled) record
+  Eigen::VectorXd modal_periods_s;    ///< periods of the building's modes, s
+  Eigen::VectorXd peak_drift_in;      ///< per story, max |interstory drift|
+  Eigen::VectorXd residual_drift_in;  ///< per story, drift at the last step
+  Eigen::VectorXd peak_floor_accel_g; ///< per floor, max |absolute acceleration|
+  Eigen::VectorXd peak_force_kip;     ///< per damper, max |force|
+  Eigen::VectorXd damper_energy_kip_in;  ///< per damper, dissipated energy ∫F·d(drum)
+  double input_energy_kip_in = 0.0;
+  double kinetic_energy_kip_in = 0.0;
+  double strain_energy_kip_in = 0.0;
+  double inherent_damping_energy_kip_in = 0.0;
+  double energy_balance_error = 0.0;  ///< |input − stored − dissipated| / |input|
+};
+
+/// Runs the step loop against `substructure` and writes results to config.output.dir.
+/// Never throws for a substructure failure: the summary says "failed" with the reason, and
+/// the time history up to the last completed step is on disk.
+RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id);
+
+/// `hybridsim run`: sets up transport (private network namespace, LCM, spawned
+/// substructure process) per the config, runs, prints the summary. Returns the exit code
+/// (0 ok, 1 run failed, 2 bad input).
+int run_command(const std::string& config_path, const std::string& output_dir_override,
+                bool quiet);
+
+/// Writes `damper-model.yaml` into `out_dir` and starts the substructure process of the
+/// config on it, with the config's URL and channel prefix. Child output goes to `log_path`.
+/// Physical mode also writes `physical.yaml` (the rig block) and passes --mode physical, the
+/// key file (physical_key_path) and the results folder.
+ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
+                                const std::string& run_id, const std::string& log_path);
+
+/// Physical mode: the HMAC key file of the run's actuator commands: rig.key_file if the config
+/// gives one, else <out_dir>/run.key (written by run_command for a local rig).
+std::string physical_key_path(const RunConfig& config, const std::string& out_dir);
+
+/// Physical mode with `rig: launch: local`: starts brfd-rig (the lab-controller emulator) with
+/// the config's rig.config, URL, channel prefix, run id and key; its logs go to out_dir.
+ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
+                       const std::string& log_path);
+
+/// Writes summary.json.
+void write_summary_json(const RunSummary& summary, const RunConfig& config, const std::string& path);
+/// Human-readable summary (the lines `hybridsim run` prints).
+std::string format_summary(const RunSummary& summary);
+
+}  // namespace server

@@ -1,0 +1,132 @@
+#include "server/run/run_config.h"
+
+#include "common/strict_yaml.h"
+#include "damper/model/brfd_config.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace server {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string resolve(const std::string& base_file, const std::string& path) {
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  return (fs::path(base_file).parent_path() / path).lexically_normal().string();
+}
+}  // namespace
+
+RunConfig load_run_config(const std::string& path) {
+  const common::YamlSection top = common::YamlSection::load_file(path);
+  top.allow_only({"run", "record", "building", "damper", "transport", "output", "rig"});
+  RunConfig c;
+  c.source_file = path;
+
+  const common::YamlSection run = top.section("run");
+  run.allow_only({"name", "dt_s"});
+  c.name = run.get_string("name", c.name);
+  c.dt_s = run.get_double_in("dt_s", c.dt_s, 1e-6, 0.1);
+
+  const common::YamlSection rec = top.section("record");
+  rec.allow_only({"path", "scale", "duration_s"});
+  c.record.path = resolve(path, rec.get_string("path"));
+  c.record.scale = rec.get_double_in("scale", 1.0, 1e-6, 100.0);
+  c.record.duration_s = rec.get_double("duration_s", -1.0);
+
+  c.building = structure::building_params_from_yaml(top.section("building"));
+
+  const common::YamlSection d = top.section("damper");
+  d.allow_only({"mode", "model_config", "model", "launch", "executable"});
+  c.damper.mode = d.get_choice("mode", {"virtual", "physical"});
+  if (d.has("model") == d.has("model_config"))
+    d.fail("model_config", "give exactly one of damper.model_config (a file) or damper.model (inline)");
+  c.damper.launch = d.get_choice("launch", c.damper.launch, {"spawn", "external"});
+  c.damper.executable = d.get_string("executable", c.damper.executable);
+  if (d.has("model")) {
+    c.damper_model = damper::brfd_params_from_yaml(d.section("model"));
+  } else {
+    c.damper.model_config = resolve(path, d.get_string("model_config"));
+    try {
+      c.damper_model = damper::load_brfd_params(c.damper.model_config);
+    } catch (const common::ConfigError& e) {
+      throw common::ConfigError(std::string(e.what()) + " (from " + path + ": damper.model_config)");
+    }
+  }
+
+  const common::YamlSection t = top.section("transport");
+  t.allow_only({"kind", "url", "private_netns", "lab_network", "channel_prefix", "step_timeout_s",
+                "start_timeout_s", "write_lcm_log"});
+  TransportSettings& tr = c.transport;
+  tr.kind = t.get_choice("kind", {"lcm", "in_process"});
+  tr.url = t.get_string("url", "");
+  if (tr.kind == "lcm" && tr.url.empty()) t.fail("url", "required when transport.kind is lcm");
+  tr.private_netns = t.get_bool("private_netns", tr.private_netns);
+  tr.lab_network = t.get_bool("lab_network", tr.lab_network);
+  tr.channel_prefix = t.get_string("channel_prefix", tr.channel_prefix);
+  tr.step_timeout_s = t.get_double_in("step_timeout_s", tr.step_timeout_s, 1e-3, 60.0);
+  tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
+  tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
+
+  // Physical mode (docs/physical.md): the rig block; absent = defaults (local emulator).
+  c.rig.rig.config = resolve(path, c.rig.rig.config);
+  if (top.has("rig")) c.rig = damper::physical::physical_settings_from_yaml(top.section("rig"));
+  if (c.damper.mode == "physical") {
+    if (tr.kind != "lcm") t.fail("kind", "damper.mode physical needs transport.kind lcm (the rig is another process)");
+    if (std::abs(c.dt_s * c.rig.controller_rate_hz - 1.0) > 1e-9)
+      run.fail("dt_s", "damper.mode physical sends one actuator command per step: dt_s must be 1 / "
+                       "rig.controller_rate_hz (" + std::to_string(1.0 / c.rig.controller_rate_hz) + " s)");
+    if (c.rig.rig.launch == "local" && !fs::exists(c.rig.rig.config))
+      throw common::ConfigError(path + ": rig.config: no such rig emulator config: " + c.rig.rig.config);
+  }
+
+  if (top.has("output")) {
+    const common::YamlSection o = top.section("output");
+    o.allow_only({"dir", "flush_every_steps", "every_n_steps"});
+    c.output.every_n_steps = o.get_int("every_n_steps", c.output.every_n_steps);
+    if (c.output.every_n_steps < 1) o.fail("every_n_steps", "must be >= 1");
+    c.output.dir = resolve(path, o.get_string("dir", c.output.dir));
+    c.output.flush_every_steps = o.get_int("flush_every_steps", c.output.flush_every_steps);
+    if (c.output.flush_every_steps < 1) o.fail("flush_every_steps", "must be >= 1");
+  }
+  return c;
+}
+
+std::string run_config_to_yaml(const RunConfig& c) {
+  std::ostringstream o;
+  o << std::setprecision(12) << std::boolalpha;
+  o << "# Effective config of this run (every value used). Units: kip, in, s.\n"
+    << "# source: " << c.source_file << "\n"
+    << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s << "\n"
+    << "record:\n  path: " << fs::absolute(c.record.path).string() << "\n  scale: " << c.record.scale
+    << "\n  duration_s: " << c.record.duration_s << "\n"
+    << "building:\n";
+  std::istringstream b(structure::building_params_to_yaml(c.building));
+  for (std::string line; std::getline(b, line);) o << "  " << line << "\n";
+  o << "damper:\n  mode: " << c.damper.mode << "\n  launch: " << c.damper.launch
+    << "\n  executable: " << c.damper.executable << "\n";
+  if (!c.damper.model_config.empty())
+    o << "  # model read from " << fs::absolute(c.damper.model_config).string() << "\n";
+  o << "  model:\n";
+  std::istringstream m(damper::brfd_params_to_yaml(c.damper_model));
+  for (std::string line; std::getline(m, line);) o << "    " << line << "\n";
+  const TransportSettings& t = c.transport;
+  o << "transport:\n  kind: " << t.kind << "\n  url: \"" << t.url << "\"\n  private_netns: "
+    << t.private_netns << "\n  lab_network: " << t.lab_network << "\n  channel_prefix: "
+    << t.channel_prefix << "\n  step_timeout_s: " << t.step_timeout_s
+    << "\n  start_timeout_s: " << t.start_timeout_s << "\n  write_lcm_log: " << t.write_lcm_log
+    << "\n"
+    << "output:\n  dir: " << fs::absolute(c.output.dir).string()
+    << "\n  flush_every_steps: " << c.output.flush_every_steps
+    << "\n  every_n_steps: " << c.output.every_n_steps << "\n";
+  if (c.damper.mode == "physical") {
+    o << "rig:\n";
+    std::istringstream r(damper::physical::physical_settings_to_yaml(c.rig));
+    for (std::string line; std::getline(r, line);) o << "  " << line << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace server

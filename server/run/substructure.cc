@@ -1,0 +1,213 @@
+#include "server/run/substructure.h"
+
+#include "hybrid_lcm/drift_command_t.hpp"
+#include "hybrid_lcm/force_feedback_t.hpp"
+#include "hybrid_lcm/heartbeat_t.hpp"
+#include "hybrid_lcm/run_control_t.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace server {
+
+using Clock = std::chrono::steady_clock;
+
+InProcessSubstructure::InProcessSubstructure(const damper::BrfdParams& params) : params_(params) {}
+
+void InProcessSubstructure::start(const std::string&, int num_dampers, double dt_s) {
+  models_.assign(static_cast<std::size_t>(num_dampers), damper::BrfdModel(params_));
+  dt_s_ = dt_s;
+}
+
+void InProcessSubstructure::exchange(long, double, const Eigen::VectorXd& drum_disp_in,
+                                     const Eigen::VectorXd& drum_vel_in_per_s,
+                                     SubstructureReply& reply) {
+  for (std::size_t k = 0; k < models_.size(); ++k) {
+    damper::DamperInput in;
+    in.drum_disp_in = drum_disp_in[k];
+    in.drum_vel_in_per_s = drum_vel_in_per_s[k];
+    in.actuator1_in = params_.semiactive.actuator1_initial_in;
+    in.actuator2_in = params_.semiactive.actuator2_initial_in;
+    reply.force_kip[k] = models_[k].step(in, dt_s_);
+    reply.measured_drum_in[k] = drum_disp_in[k];
+  }
+}
+
+struct LcmSubstructure::Impl {
+  LcmLinkSettings settings;
+  std::unique_ptr<lcm::LCM> lcm;
+  std::unique_ptr<lcm::LogFile> log;
+  std::string run_id;
+  int num_dampers = 0;
+  hybrid_lcm::drift_command_t command;
+  hybrid_lcm::force_feedback_t feedback;
+  bool have_feedback = false;
+  long expected_step = -1;
+  bool substructure_ready = false;
+  std::string last_heartbeat_fault;
+  std::vector<uint8_t> encode_buffer;
+
+  void log_event(const std::string& channel, const void* data, int size) {
+    if (!log) return;
+    lcm::LogEvent ev;
+    ev.eventnum = 0;  // lcm renumbers on write
+    ev.timestamp = messages::now_utime();
+    ev.channel = channel;
+    ev.datalen = size;
+    ev.data = const_cast<void*>(data);
+    log->writeEvent(&ev);
+  }
+
+  template <class T>
+  void publish(const std::string& channel, const T& msg) {
+    const int size = msg.getEncodedSize();
+    encode_buffer.resize(static_cast<std::size_t>(size));
+    msg.encode(encode_buffer.data(), 0, size);
+    if (lcm->publish(channel, encode_buffer.data(), static_cast<unsigned>(size)) != 0) {
+      throw SubstructureError("LCM publish failed on channel '" + channel + "'");
+    }
+    log_event(channel, encode_buffer.data(), size);
+  }
+
+  void on_feedback(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    log_event(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+    hybrid_lcm::force_feedback_t msg = messages::decode<hybrid_lcm::force_feedback_t>(*rbuf, channel);
+    if (msg.run_id != run_id || msg.step != expected_step) return;  // other run or stale reply
+    feedback = std::move(msg);
+    have_feedback = true;
+  }
+
+  void on_heartbeat(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    log_event(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+    hybrid_lcm::heartbeat_t hb = messages::decode<hybrid_lcm::heartbeat_t>(*rbuf, channel);
+    if (hb.run_id != run_id) return;
+    if (hb.state == hybrid_lcm::heartbeat_t::STATE_READY || hb.state == hybrid_lcm::heartbeat_t::STATE_RUNNING)
+      substructure_ready = true;
+    if (hb.state == hybrid_lcm::heartbeat_t::STATE_FAULT) last_heartbeat_fault = hb.sender + " reports a fault";
+  }
+
+  /// Handles LCM traffic until `done()` or the deadline. Returns false on timeout.
+  template <class Pred>
+  bool pump_until(Pred done, Clock::time_point deadline) {
+    while (!done()) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) return false;
+      const int rc = lcm->handleTimeout(static_cast<int>(std::min<long>(left, 50)));
+      if (rc < 0) throw SubstructureError("LCM handle() failed on URL '" + settings.url + "'");
+    }
+    return true;
+  }
+};
+
+LcmSubstructure::LcmSubstructure(const LcmLinkSettings& settings) : impl_(std::make_unique<Impl>()) {
+  impl_->settings = settings;
+  impl_->lcm = messages::open_lcm(settings.url, settings.lab_network);
+  if (!settings.log_path.empty()) {
+    impl_->log = std::make_unique<lcm::LogFile>(settings.log_path, "w");
+    if (!impl_->log->good()) throw SubstructureError("cannot write LCM log " + settings.log_path);
+    // A large stdio buffer keeps log writes to one write() per MiB, off the step's p99.
+    std::setvbuf(impl_->log->getFilePtr(), nullptr, _IOFBF, 1 << 20);
+  }
+  impl_->lcm->subscribe(settings.channels.force_feedback(), &Impl::on_feedback, impl_.get());
+  impl_->lcm->subscribe(settings.channels.heartbeat(), &Impl::on_heartbeat, impl_.get());
+}
+
+LcmSubstructure::~LcmSubstructure() = default;
+
+void LcmSubstructure::start(const std::string& run_id, int num_dampers, double dt_s) {
+  Impl& m = *impl_;
+  m.run_id = run_id;
+  m.num_dampers = num_dampers;
+  m.command.run_id = run_id;
+  m.command.num_dampers = num_dampers;
+  m.command.drift_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
+  m.command.drift_velocity_in_per_s.assign(static_cast<std::size_t>(num_dampers), 0.0);
+  hybrid_lcm::run_control_t start;
+  start.run_id = run_id;
+  start.command = hybrid_lcm::run_control_t::COMMAND_START;
+  start.num_dampers = num_dampers;
+  start.dt_s = dt_s;
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m.settings.start_timeout_s));
+  // Messages published before the peer subscribes are lost: repeat START until it answers.
+  while (!m.substructure_ready) {
+    start.utime = messages::now_utime();
+    m.publish(m.settings.channels.run_control(), start);
+    const Clock::time_point retry =
+        std::min<Clock::time_point>(deadline, Clock::now() + std::chrono::milliseconds(100));
+    m.pump_until([&] { return m.substructure_ready; }, retry);
+    if (!m.substructure_ready && Clock::now() >= deadline) {
+      throw SubstructureError("no heartbeat from the substructure on LCM channel '" +
+                              m.settings.channels.heartbeat() + "' within " +
+                              std::to_string(m.settings.start_timeout_s) + " s of START on '" +
+                              m.settings.channels.run_control() + "' (URL " + m.settings.url + ")");
+    }
+  }
+}
+
+void LcmSubstructure::exchange(long step, double sim_time_s, const Eigen::VectorXd& drum_disp_in,
+                               const Eigen::VectorXd& drum_vel_in_per_s, SubstructureReply& reply) {
+  Impl& m = *impl_;
+  for (int k = 0; k < m.num_dampers; ++k) {
+    m.command.drift_in[k] = drum_disp_in[k];
+    m.command.drift_velocity_in_per_s[k] = drum_vel_in_per_s[k];
+  }
+  m.command.step = step;
+  m.command.sim_time_s = sim_time_s;
+  m.expected_step = step;
+  m.have_feedback = false;
+  const auto sent = Clock::now();
+  m.command.utime = messages::now_utime();
+  m.publish(m.settings.channels.drift_command(), m.command);
+  const Clock::time_point deadline =
+      sent + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m.settings.step_timeout_s));
+  if (!m.pump_until([&] { return m.have_feedback; }, deadline)) {
+    throw SubstructureError("substructure stopped answering: no force feedback on LCM channel '" +
+                            m.settings.channels.force_feedback() + "' for step " +
+                            std::to_string(step) + " within " +
+                            std::to_string(m.settings.step_timeout_s) + " s" +
+                            (m.last_heartbeat_fault.empty() ? "" : " (" + m.last_heartbeat_fault + ")"));
+  }
+  if (keep_round_trips_)
+    round_trip_us_.push_back(std::chrono::duration<double, std::micro>(Clock::now() - sent).count());
+  const hybrid_lcm::force_feedback_t& fb = m.feedback;
+  if (fb.status != hybrid_lcm::force_feedback_t::STATUS_OK) {
+    const char* what = fb.status == hybrid_lcm::force_feedback_t::STATUS_SAFETY_TRIP ? "safety trip" : "fault";
+    throw SubstructureError(std::string("substructure ") + what + " at step " + std::to_string(step) +
+                            " (channel '" + m.settings.channels.force_feedback() + "'): " + fb.message);
+  }
+  if (fb.num_dampers != m.num_dampers) {
+    throw SubstructureError("force feedback on '" + m.settings.channels.force_feedback() + "' has " +
+                            std::to_string(fb.num_dampers) + " dampers, expected " +
+                            std::to_string(m.num_dampers));
+  }
+  for (int k = 0; k < m.num_dampers; ++k) {
+    if (!std::isfinite(fb.force_kip[k]) || !std::isfinite(fb.measured_drift_in[k])) {
+      throw SubstructureError("force feedback on '" + m.settings.channels.force_feedback() +
+                              "' carries a non-finite value at step " + std::to_string(step));
+    }
+    reply.force_kip[k] = fb.force_kip[k];
+    reply.measured_drum_in[k] = fb.measured_drift_in[k];
+  }
+}
+
+void LcmSubstructure::stop(bool abort, const std::string& reason) {
+  Impl& m = *impl_;
+  hybrid_lcm::run_control_t msg;
+  msg.utime = messages::now_utime();
+  msg.run_id = m.run_id;
+  msg.command = abort ? hybrid_lcm::run_control_t::COMMAND_ABORT : hybrid_lcm::run_control_t::COMMAND_STOP;
+  msg.num_dampers = m.num_dampers;
+  msg.dt_s = 0.0;
+  msg.reason = reason;
+  try {
+    m.publish(m.settings.channels.run_control(), msg);
+  } catch (const std::exception&) {
+    // Stopping is best effort: the substructure also exits on its own command watchdog.
+  }
+  if (m.log) m.log.reset();  // flushes and closes the LCM log
+}
+
+}  // namespace server

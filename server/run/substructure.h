@@ -1,0 +1,100 @@
+#pragma once
+/// @file substructure.h
+/// The seam between the step loop and whoever produces the damper force: "here is the drum
+/// displacement of step i+1, give me the force". In-process (the model called directly) and
+/// remote over LCM (a brfd-substructure process, virtual or physical) give identical
+/// results for the same model.
+
+#include "damper/model/brfd_model.h"
+#include "messages/lcm_bus.h"
+
+#include <Eigen/Dense>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hybrid_lcm {
+class force_feedback_t;
+class heartbeat_t;
+}
+
+namespace server {
+
+/// The substructure failed: timed out, reported a fault or a safety trip, or sent garbage.
+class SubstructureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Damper forces and achieved drum displacements for one step.
+struct SubstructureReply {
+  Eigen::VectorXd force_kip;          ///< per damper, force on its actuator (resisting +velocity)
+  Eigen::VectorXd measured_drum_in;   ///< per damper, drum displacement achieved
+};
+
+class Substructure {
+ public:
+  virtual ~Substructure() = default;
+  /// Prepares a run of `num_dampers` dampers stepped at dt_s. May block for a handshake.
+  virtual void start(const std::string& run_id, int num_dampers, double dt_s) = 0;
+  /// One exchange: target drum displacement (in) and velocity (in/s) of step `step`.
+  /// Throws SubstructureError.
+  virtual void exchange(long step, double sim_time_s, const Eigen::VectorXd& drum_disp_in,
+                        const Eigen::VectorXd& drum_vel_in_per_s, SubstructureReply& reply) = 0;
+  /// Orderly stop (abort = emergency stop) with a reason for the logs.
+  virtual void stop(bool abort, const std::string& reason) = 0;
+};
+
+/// The BRFD model called directly, one BrfdModel per damper (actuators hold their initial
+/// positions: no semi-active controller yet).
+class InProcessSubstructure : public Substructure {
+ public:
+  explicit InProcessSubstructure(const damper::BrfdParams& params);
+  void start(const std::string& run_id, int num_dampers, double dt_s) override;
+  void exchange(long step, double sim_time_s, const Eigen::VectorXd& drum_disp_in,
+                const Eigen::VectorXd& drum_vel_in_per_s, SubstructureReply& reply) override;
+  void stop(bool, const std::string&) override {}
+
+ private:
+  damper::BrfdParams params_;
+  std::vector<damper::BrfdModel> models_;
+  double dt_s_ = 0.0;
+};
+
+/// Settings of the LCM link, from the run config's transport block.
+struct LcmLinkSettings {
+  std::string url;
+  bool lab_network = false;
+  messages::Channels channels;
+  double step_timeout_s = 1.0;
+  double start_timeout_s = 10.0;
+  std::string log_path;   ///< LCM log of all traffic of the run ("" = none)
+};
+
+/// A substructure in another process, over LCM: publishes drift_command_t, waits for the
+/// force_feedback_t of the same run and step. Handshake: run_control_t START is repeated
+/// until the substructure's heartbeat for this run arrives.
+class LcmSubstructure : public Substructure {
+ public:
+  explicit LcmSubstructure(const LcmLinkSettings& settings);
+  ~LcmSubstructure() override;
+  void start(const std::string& run_id, int num_dampers, double dt_s) override;
+  void exchange(long step, double sim_time_s, const Eigen::VectorXd& drum_disp_in,
+                const Eigen::VectorXd& drum_vel_in_per_s, SubstructureReply& reply) override;
+  void stop(bool abort, const std::string& reason) override;
+
+  /// Round-trip times of every exchange so far, microseconds (for the benchmark).
+  const std::vector<double>& round_trip_us() const { return round_trip_us_; }
+  void keep_round_trips(bool keep) { keep_round_trips_ = keep; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<double> round_trip_us_;
+  bool keep_round_trips_ = false;
+};
+
+}  // namespace server

@@ -1,0 +1,122 @@
+// Reading, split and regimes of `diagnose` (damper/diagnose/diagnose_data.h) on a synthetic record with a
+// known drive, and the recorded-run CSV reader.
+#include "damper/diagnose/diagnose_data.h"
+#include "synthetic.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace damper {
+namespace {
+
+using diagnose_test::make_record;
+using diagnose_test::synthetic_base;
+
+std::string temp_dir(const std::string& name) {
+  const std::filesystem::path d = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+TEST(DiagnoseData, SplitAndRegimesFollowTheDrive) {
+  const BrfdTest t = make_record(synthetic_base());
+  const Segmentation s = segment_record(t);
+  const double dt = t.dt_s;
+  // Passive window: until actuator 1 starts to retract at 3.5 s.
+  EXPECT_NEAR(s.passive_end * dt, 3.5, 0.05);
+  EXPECT_TRUE(s.actuated);
+  // 0.5 Hz for 12 s: reversals at the displacement extrema, 0.5, 1.5, ... 11.5 s outside the
+  // 2 s ramps (the ramps shift them).
+  EXPECT_GE(s.reversals.size(), 10u);
+  for (std::size_t r : s.reversals) {
+    const double t_r = r * dt;
+    if (t_r > 2.0 && t_r < 10.0) {
+      EXPECT_NEAR(t_r - std::round(t_r - 0.5) - 0.5, 0.0, 0.01) << t_r;
+    }
+  }
+  // Rest from about 12 s, split in halves: first training, second held-out.
+  EXPECT_NEAR(s.rest_begin * dt, 12.0, 0.4);
+  EXPECT_EQ(s.regime.back(), Regime::after_stop);
+  EXPECT_EQ(s.train.back(), 0);
+  EXPECT_EQ(s.train[s.rest_begin + 10], 1);
+  // Training before the first actuator motion, then drum cycles alternate.
+  for (std::size_t i = 0; i < s.passive_end; ++i) ASSERT_EQ(s.train[i], 1);
+  std::size_t heldout = 0, flips = 0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    heldout += s.train[i] ? 0 : 1;
+    flips += s.train[i] != s.train[i - 1] ? 1 : 0;
+  }
+  EXPECT_GT(heldout * dt, 3.0);
+  EXPECT_GE(flips, 5u);
+  // Regimes at chosen instants: right after the reversal at 5.5 s, sliding at 6.0 s (|v| max),
+  // actuators moving at 4.25 s, sticking just before the reversal at 9.5 s.
+  auto at = [&](double time) { return s.regime[static_cast<std::size_t>(std::lround(time / dt))]; };
+  EXPECT_EQ(at(5.55), Regime::reversal);
+  EXPECT_EQ(at(6.0), Regime::sliding);
+  EXPECT_EQ(at(4.25), Regime::actuators);
+  EXPECT_EQ(at(9.47), Regime::sticking);
+}
+
+TEST(DiagnoseData, LocalizeAttributesEnergyToRegimesAndChatter) {
+  const BrfdTest t = make_record(synthetic_base());
+  const Segmentation s = segment_record(t);
+  const SegmentationOptions o;
+  // A constant offset after the drum stops: all of it in after_stop.
+  std::vector<double> r(t.size(), 0.0);
+  for (std::size_t i = s.rest_begin + 200; i < t.size(); ++i) r[i] = 0.5;
+  RegimeEnergy e = localize(r, s, t.dt_s, o);
+  EXPECT_GT(e.energy[static_cast<int>(Regime::after_stop)] / e.total(), 0.97);
+  // A 40 Hz oscillation: chatter.
+  for (std::size_t i = 0; i < t.size(); ++i) r[i] = 0.3 * std::sin(2 * M_PI * 40.0 * t.time_s[i]);
+  e = localize(r, s, t.dt_s, o);
+  EXPECT_GT(e.energy[static_cast<int>(Regime::chatter)] / e.total(), 0.95);
+}
+
+TEST(DiagnoseData, ReadsARecordedPhysicalRun) {
+  const std::string dir = temp_dir("diagnose_data_csv");
+  {
+    std::ofstream f(dir + "/physical.csv");
+    f.precision(17);
+    f << "step,sim_time_s,target_in,compensated_in,command_in,measured_in,force_kip,actuator1_in,actuator2_in,"
+         "actuator1_force_lb,actuator2_force_lb,ats_a0,ats_a1_s,ats_a2_s2,frame_sequence,acked_command_sequence,"
+         "command_sequence\n";
+    for (int i = 0; i < 1024; ++i) {
+      const double t = i / 1024.0;
+      f << i << ',' << t << ",0,0,0," << std::sin(M_PI * t) << ',' << 2 * std::cos(M_PI * t) << ",0.655,0.8559,30,40,1,0,0,"
+        << i << ',' << i << ',' << i << '\n';
+    }
+  }
+  const BrfdTest t = read_measured_record(dir);  // the run folder
+  ASSERT_EQ(t.size(), 1024u);
+  EXPECT_NEAR(t.dt_s, 1.0 / 1024.0, 1e-12);
+  EXPECT_TRUE(t.has_actuator_positions);
+  EXPECT_TRUE(t.velocity_derived);
+  EXPECT_NEAR(t.drum_vel_in_per_s[512], M_PI * std::cos(M_PI * 0.5), 0.01);
+  EXPECT_NEAR(t.force_kip[10], 2 * std::cos(M_PI * 10 / 1024.0), 1e-9);
+  EXPECT_EQ(expand_measured_paths({dir}).size(), 1u);
+
+  // A bad value names the row and the column.
+  {
+    std::ofstream f(dir + "/bad.csv");
+    f << "time_s,drum_disp_in,measured_force_kip\n";
+    for (int i = 0; i < 200; ++i) f << i / 1024.0 << ',' << 0.001 * i << ',' << (i == 150 ? "nan" : "1.0") << '\n';
+  }
+  try {
+    read_measured_record(dir + "/bad.csv");
+    FAIL() << "expected BrfdDataError";
+  } catch (const BrfdDataError& e) {
+    EXPECT_NE(std::string(e.what()).find("row 151, column 2 (measured_force_kip)"), std::string::npos) << e.what();
+  }
+  {
+    std::ofstream f(dir + "/nocols.csv");
+    f << "a,b\n1,2\n";
+  }
+  EXPECT_THROW(read_measured_record(dir + "/nocols.csv"), BrfdDataError);
+}
+
+}  // namespace
+}  // namespace damper

@@ -1,0 +1,74 @@
+// NLopt identification: recovers known LuGre parameters from a synthetic passive test, and fits
+// a measured characterization test.
+#include "damper/fit/identification.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+namespace damper {
+namespace {
+
+BrfdTest synthetic_test(const BrfdParams& truth, double seconds) {
+  BrfdTest t;
+  t.path = "synthetic.json";
+  t.dt_s = 1.0 / 1024.0;
+  const int n = static_cast<int>(seconds * 1024);
+  for (int k = 0; k < n; ++k) {
+    const double time = k * t.dt_s;
+    const double ramp = std::min(1.0, time / 1.0);  // ramped like the lab tests
+    t.time_s.push_back(time);
+    t.drum_disp_in.push_back(ramp * std::sin(M_PI * time));
+    t.drum_vel_in_per_s.push_back(ramp * M_PI * std::cos(M_PI * time) + (time < 1.0 ? std::sin(M_PI * time) : 0.0));
+    t.force_kip.push_back(0.0);
+    t.actuator1_force_lb.push_back(0.0);
+    t.actuator2_force_lb.push_back(0.0);
+  }
+  ReplayOptions zero_start;
+  zero_start.initial_bristle_from_force = false;
+  t.force_kip = replay_force_kip(truth, t, 0, t.size(), zero_start);
+  return t;
+}
+
+TEST(Identification, RecoversKnownParametersFromSyntheticPassiveData) {
+  BrfdParams truth;
+  truth.kind = DamperKind::passive_lugre;
+  truth.lugre = {18.0, 0.05, 0.4, 7.0, 4.0, 3.0, 1.6, 1.0};  // σ0 σ1 σ2 Fs± Fc± vs
+  const BrfdTest t = synthetic_test(truth, 6.0);
+  IdentificationOptions o;
+  o.global_runs = 2;
+  const IdentificationResult r = identify_lugre(t, BrfdParams{}, o);
+  std::cout << describe(r) << "\n";
+  EXPECT_LT(r.residual.rmse_kip, 0.02);
+  EXPECT_NEAR(r.params.lugre.fc_fwd_kip, 3.0, 0.15);
+  EXPECT_NEAR(r.params.lugre.fc_bwd_kip, 1.6, 0.1);
+  EXPECT_NEAR(r.params.lugre.sigma2_kip_s_per_in, 0.4, 0.05);
+  EXPECT_NEAR(r.params.lugre.sigma0_kip_per_in, 18.0, 2.0);
+  EXPECT_EQ(r.params.kind, DamperKind::semiactive);  // the start's non-LuGre parts are kept
+}
+
+TEST(Identification, RejectsAWindowWithoutData) {
+  BrfdParams truth;
+  const BrfdTest t = synthetic_test(truth, 1.0);
+  IdentificationOptions o;
+  o.t0_s = 0.5;
+  o.t1_s = 0.52;
+  EXPECT_THROW(identify_lugre(t, truth, o), std::invalid_argument);
+}
+
+TEST(Identification, FitsTheMeasuredCharacterizationTest) {
+  const std::string file = std::string(BRFD_SHARED_DIR) +
+                           "/data/brfd/characterization/0.5Hz30lbtension1amplitude.json";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "BRFD data not found: " << file;
+  const BrfdTest t = read_brfd_test(file);
+  const IdentificationResult r = identify_lugre(t, BrfdParams{}, IdentificationOptions{});
+  std::cout << t.name() << ": " << describe(r) << "\n";
+  EXPECT_LT(r.residual.nrmse_std, 0.2);
+  EXPECT_GT(r.params.lugre.fc_fwd_kip, 1.0);
+  EXPECT_GT(r.params.lugre.fc_bwd_kip, 1.0);
+}
+
+}  // namespace
+}  // namespace damper

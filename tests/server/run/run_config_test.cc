@@ -1,0 +1,86 @@
+// The run config loader is strict: every error names the file, the line and the key.
+#include "common/strict_yaml.h"
+#include "messages/lcm_bus.h"
+#include "run_process.h"
+#include "server/run/run_config.h"
+#include "test_paths.h"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+
+namespace {
+
+std::string three_story_text() {
+  std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
+  // Make relative paths absolute so the edited copy can live in a temp folder.
+  text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
+  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
+                            "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
+  return text;
+}
+
+std::string load_error(const std::string& text) {
+  const std::string path = test_support::fresh_temp_dir("cfg") + "/bad.yaml";
+  test_support::write_text(path, text);
+  try {
+    server::load_run_config(path);
+  } catch (const common::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RunConfig, ShippedConfigsLoad) {
+  for (const char* name : {"three-story.yaml", "ten-story.yaml"}) {
+    const server::RunConfig c = server::load_run_config(test_paths::source_dir() + "/configs/" + name);
+    EXPECT_FALSE(c.transport.url.empty()) << name;
+    EXPECT_GE(c.building.dampers.size(), 1u) << name;
+  }
+}
+
+TEST(RunConfig, UnknownKeyIsNamed) {
+  const std::string err = load_error(std::regex_replace(three_story_text(), std::regex("  scale: 1.0"), "  scael: 1.0"));
+  EXPECT_NE(err.find("bad.yaml:"), std::string::npos) << err;
+  EXPECT_NE(err.find("record.scael: unknown key"), std::string::npos) << err;
+}
+
+TEST(RunConfig, MissingKeyIsNamed) {
+  const std::string err = load_error(std::regex_replace(three_story_text(), std::regex("  story_stiffness_kip_per_in:[^\n]*\n"), ""));
+  EXPECT_NE(err.find("story_stiffness_kip_per_in"), std::string::npos) << err;
+  EXPECT_NE(err.find("missing"), std::string::npos) << err;
+}
+
+TEST(RunConfig, NegativeMassIsRefused) {
+  const std::string err = load_error(std::regex_replace(three_story_text(), std::regex("\\[0.02, 0.02, 0.02\\]"), "[0.02, -0.02, 0.02]"));
+  EXPECT_NE(err.find("story_mass_kip_s2_per_in"), std::string::npos) << err;
+}
+
+TEST(RunConfig, LcmTransportNeedsAUrl) {
+  const std::string err = load_error(std::regex_replace(three_story_text(), std::regex("  url: \"[^\"]*\"\n"), ""));
+  EXPECT_NE(err.find("transport.url"), std::string::npos) << err;
+}
+
+TEST(RunConfig, EffectiveConfigLoadsBackToTheSameRun) {
+  const server::RunConfig a = server::load_run_config(test_paths::source_dir() + "/configs/three-story.yaml");
+  const std::string path = test_support::fresh_temp_dir("eff") + "/effective.yaml";
+  test_support::write_text(path, server::run_config_to_yaml(a));
+  const server::RunConfig b = server::load_run_config(path);
+  EXPECT_EQ(b.building.story_mass_kip_s2_per_in, a.building.story_mass_kip_s2_per_in);
+  EXPECT_EQ(b.damper_model.lugre.sigma0_kip_per_in, a.damper_model.lugre.sigma0_kip_per_in);
+  EXPECT_EQ(b.damper_model.lugre.fc_bwd_kip, a.damper_model.lugre.fc_bwd_kip);
+  EXPECT_EQ(b.record.duration_s, a.record.duration_s);
+  EXPECT_EQ(b.transport.url, a.transport.url);
+}
+
+TEST(Transport, MulticastIsRefusedOutsideAPrivateNetworkNamespace) {
+  if (messages::in_private_network_namespace()) GTEST_SKIP() << "this test already runs in a private netns";
+  try {
+    messages::open_lcm("udpm://239.255.76.67:7667?ttl=0", false);
+    FAIL() << "multicast LCM opened in the machine's network namespace";
+  } catch (const messages::TransportError& e) {
+    EXPECT_NE(std::string(e.what()).find("private network namespace"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
