@@ -28,11 +28,6 @@ CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
   x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = rhs_ = Eigen::VectorXd::Zero(n);
 }
 
-void CrIntegrator::initialize(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
-  const int n = building_.num_stories();
-  initialize(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), ground_accel_in_per_s2, damper_force_kip);
-}
-
 void CrIntegrator::initialize(const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
                               double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
   const int n = building_.num_stories();

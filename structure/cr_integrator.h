@@ -21,6 +21,7 @@
 /// measures both. Since x₊ = x + Δt·v₊, the velocity v₊ is the backward difference
 /// (x₊ − x)/Δt: a second-order estimate of ẋ at mid-step, lagging ẋ(t₊) by Δt/2.
 
+#include "structure/integrator.h"
 #include "structure/shear_building.h"
 
 #include <Eigen/Dense>
@@ -30,28 +31,29 @@ namespace structure {
 /// CR integrator for one ShearBuilding. Usage per step: predict(); read next_displacement_in()
 /// / next_velocity_in_per_s() and obtain the damper forces for that state; complete().
 /// predict() and complete() allocate no memory (real-time safe).
-class CrIntegrator {
+class CrIntegrator final : public Integrator {
  public:
   /// Precomputes α and the Cholesky factorization of M. Keeps a reference to `building`,
   /// which must outlive the integrator.
   /// @throws std::invalid_argument if dt_s is not finite and > 0.
   CrIntegrator(const ShearBuilding& building, double dt_s);
 
-  /// Starts at rest (x = v = 0, t = 0, step 0) and solves M a₀ = −M ι ü_g(0) − Γ F₀.
-  /// @param ground_accel_in_per_s2 ü_g at t = 0, in/s²
-  /// @param damper_force_kip F₀, one entry per damper (kip)
-  /// @throws std::invalid_argument if damper_force_kip has the wrong size.
-  void initialize(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip);
-  /// Starts from a given state (e.g. free vibration); otherwise as initialize() above.
+  std::string name() const override { return "cr"; }
+  std::string description() const override { return "CR (Chen & Ricles 2008)"; }
+
+  /// Starts at rest (x = v = 0, t = 0, step 0) and solves M a₀ = −M ι ü_g(0) − Γ F₀
+  /// (Integrator::initialize(ground_accel_in_per_s2, damper_force_kip)), or from a given
+  /// state (e.g. free vibration) solving M a₀ = −M ι ü_g(0) − C v₀ − K x₀ − Γ F₀.
   /// @throws std::invalid_argument on wrong sizes.
+  using Integrator::initialize;
   void initialize(const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
-                  double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip);
+                  double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) override;
 
   /// Computes x₊ and v₊ from the committed state. Calling it again before complete() is
   /// harmless (same result). @throws std::logic_error if not initialized.
-  void predict();
-  const Eigen::VectorXd& next_displacement_in() const { return x_next_; }     ///< x₊, in
-  const Eigen::VectorXd& next_velocity_in_per_s() const { return v_next_; }  ///< v₊, in/s
+  void predict() override;
+  const Eigen::VectorXd& next_displacement_in() const override { return x_next_; }     ///< x₊, in
+  const Eigen::VectorXd& next_velocity_in_per_s() const override { return v_next_; }  ///< v₊, in/s
 
   /// Solves M·a₊ = −M·ι·ü_g(t₊) − C·v₊ − K·x₊ − Γ·F and commits the step (t += Δt).
   /// @param ground_accel_in_per_s2 ü_g at t₊ = t + Δt, in/s²
@@ -59,14 +61,13 @@ class CrIntegrator {
   ///        positive drum velocity)
   /// @throws std::logic_error if predict() was not called for this step;
   ///         std::invalid_argument if damper_force_kip has the wrong size.
-  void complete(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip);
+  void complete(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) override;
 
-  const Eigen::VectorXd& displacement_in() const { return x_; }           ///< committed x, in
-  const Eigen::VectorXd& velocity_in_per_s() const { return v_; }         ///< committed ẋ, in/s
-  const Eigen::VectorXd& acceleration_in_per_s2() const { return a_; }    ///< committed ẍ, in/s²
-  double time_s() const { return static_cast<double>(step_) * dt_s_; }   ///< t of the committed state
-  long step_index() const { return step_; }
-  double dt_s() const { return dt_s_; }
+  const Eigen::VectorXd& displacement_in() const override { return x_; }         ///< committed x, in
+  const Eigen::VectorXd& velocity_in_per_s() const override { return v_; }       ///< committed ẋ, in/s
+  const Eigen::VectorXd& acceleration_in_per_s2() const override { return a_; }  ///< committed ẍ, in/s²
+  long step_index() const override { return step_; }
+  double dt_s() const override { return dt_s_; }
   /// The integration parameter α = (M + Δt/2·C + Δt²/4·K)⁻¹·M (dimensionless).
   const Eigen::MatrixXd& alpha() const { return alpha_; }
 
