@@ -32,6 +32,7 @@ struct BatchRecord {
   double scale = 1.0;      ///< multiplies the record's accelerations
   std::string label;       ///< unique name of the run: OUT/runs/<label>/
   int line = 0;            ///< line of the list file (0 in folder mode)
+  std::string config;      ///< run config of this record; "" = the batch's --config (IDA cases)
 };
 
 /// A record list file or folder that cannot be used (names the file and line).
@@ -65,6 +66,10 @@ struct BatchOptions {
   bool quiet = false;            ///< no progress output (the final line is still printed)
   double duration_s = 0.0;       ///< overrides record.duration_s of the config (< 0: whole
                                  ///< records); 0 keeps the config's value
+  /// Overrides transport.kind of every run: "in_process" calls the damper model inside the
+  /// worker (the same model code as brfd-substructure, no LCM, no network namespace), "lcm"
+  /// forces the two-process run; "" keeps the config's.
+  std::string transport;
 };
 
 /// `hybridsim batch ...`. Returns the exit code: 0 all records ok, 1 some failed or not run,
@@ -87,13 +92,14 @@ struct BatchWorkerOptions {
   std::string channel_prefix;
   int index = 0;
   bool shared_netns = false; ///< do not create a network namespace (the caller is in one)
+  std::string transport;     ///< overrides transport.kind ("" keeps the config's)
 };
 
 /// Worker exit codes.
 enum BatchWorkerExit { kWorkerOk = 0, kWorkerRunFailed = 1, kWorkerInfraFailed = 3 };
 
 /// `hybridsim batch worker ...` (internal): one run. Enters a private network namespace
-/// (unless shared_netns), runs like `hybridsim run`, writes summary.json, renames
+/// (unless shared_netns or the transport is in_process), runs like `hybridsim run`, writes summary.json, renames
 /// <label>.partial/ to <label>/. A record that cannot be read is a failed run (exit 1). A
 /// failure of the machinery (no namespace, cannot spawn) leaves the .partial folder with a
 /// failed summary.json and exits 3: the run is redone on resume.

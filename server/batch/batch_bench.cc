@@ -48,12 +48,18 @@ int batch_bench(const BatchOptions& o) {
     return 2;
   }
   const RunConfig config = load_run_config(o.config);
-  const std::vector<int> jobs_list{1, std::max(2, o.jobs)};
+  // 1 and 2 jobs, then 4, 8, 16, ... up to --jobs (default: the machine's cores).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int max_jobs = o.jobs > 1 ? o.jobs : std::max(2, cores);
+  std::vector<int> jobs_list{1, 2};
+  for (int j = 4; j <= max_jobs; j *= 2) jobs_list.push_back(j);
+  if (max_jobs > 2 && jobs_list.back() != max_jobs) jobs_list.push_back(max_jobs);
   std::map<int, std::vector<double>> rates, cpu_per_record;
   std::cout << "bench: " << b.records.size() << " records, "
             << (b.duration_s > 0 ? common::format_fixed(b.duration_s, 1) + " s simulated each" : std::string("whole records"))
             << ", dt " << common::format_shortest(config.dt_s) << " s, " << std::thread::hardware_concurrency() << " cores, "
-            << o.bench_repeat << " alternating pass(es)" << std::endl;
+            << o.bench_repeat << " alternating pass(es), transport "
+            << (o.transport.empty() ? config.transport.kind : o.transport) << std::endl;
   Counts last;
   double last_wall = 0.0;
   for (int pass = 1; pass <= o.bench_repeat; ++pass) {
@@ -85,18 +91,24 @@ int batch_bench(const BatchOptions& o) {
                 << last.failed << std::endl;
     }
   }
-  const int j2 = jobs_list[1];
   for (int jobs : jobs_list) {
     const auto& r = rates[jobs];
     std::cout << "jobs=" << jobs << ": " << common::format_fixed(*std::max_element(r.begin(), r.end()), 3) << " records/s best, "
               << common::format_fixed(median(r), 3) << " median" << std::endl;
   }
-  const double best = *std::max_element(rates[j2].begin(), rates[j2].end()) /
-                      *std::max_element(rates[1].begin(), rates[1].end());
-  const double med = median(rates[j2]) / median(rates[1]);
-  std::cout << "speedup with " << j2 << " jobs: " << common::format_fixed(best, 2) << "x (best) / " << common::format_fixed(med, 2)
-            << "x (median); scaling efficiency " << common::format_fixed(100.0 * best / j2, 1) << " % (best), "
-            << common::format_fixed(100.0 * med / j2, 1) << " % (median)" << std::endl;
+  std::string summary = "bench_efficiency_pct";
+  for (std::size_t k = 1; k < jobs_list.size(); ++k) {
+    const int j2 = jobs_list[k];
+    const double best = *std::max_element(rates[j2].begin(), rates[j2].end()) /
+                        *std::max_element(rates[1].begin(), rates[1].end());
+    const double med = median(rates[j2]) / median(rates[1]);
+    std::cout << "speedup with " << j2 << " jobs: " << common::format_fixed(best, 2) << "x (best) / "
+              << common::format_fixed(med, 2) << "x (median); scaling efficiency "
+              << common::format_fixed(100.0 * best / j2, 1) << " % (best), " << common::format_fixed(100.0 * med / j2, 1)
+              << " % (median)" << std::endl;
+    summary += " jobs" + std::to_string(j2) + "=" + common::format_fixed(100.0 * best / j2, 1);
+  }
+  std::cout << summary << std::endl;
   print_final_line(last, last_wall);
   return last.failed == 0 ? 0 : 1;
 }

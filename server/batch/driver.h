@@ -6,6 +6,7 @@
 /// payload of results gathered over MPI.
 
 #include "server/batch/batch_set.h"
+#include "server/batch/progress.h"
 
 #include <string>
 #include <vector>
@@ -28,9 +29,11 @@ void unblock_stop_signals();
 void install_interrupt_handlers();
 
 /// Runs the records `mine` (indices into b.records) that are not finished yet, `jobs` at a
-/// time, one worker process each.
+/// time, one worker process each (a record's own run config if it names one, else b.config;
+/// o.transport, if set, overrides the transport of every run). Progress goes to
+/// `shared_progress` if given (IDA rounds), else to a display of its own.
 DriverResult run_records(const BatchOptions& o, const BatchSet& b, const std::vector<std::size_t>& mine,
-                         const std::string& progress_prefix);
+                         const std::string& progress_prefix, Progress* shared_progress = nullptr);
 
 /// Holds an exclusive lock on OUT/.batch.lock while a local batch runs in OUT. The lock is
 /// inherited by the worker processes (no O_CLOEXEC), so a batch restarted right after a kill

@@ -1,8 +1,9 @@
 #pragma once
 /// @file progress.h
 /// The batch progress display: on a terminal one redrawn bar (runs done, failed, running,
-/// elapsed, time left) with failures printed above it; otherwise (logs, MPI) one line per
-/// finished run.
+/// rate, elapsed, time left) with failures printed above it; otherwise (logs, MPI) one line
+/// per finished run. Shared by `hybridsim batch` and `hybridsim ida` (whose total is an upper
+/// bound, refined by set_plan() as the hunt-and-fill traces finish).
 
 #include "server/batch/batch.h"
 
@@ -48,10 +49,21 @@ class Progress {
       if (state != "ok") std::cout << "\r\033[K" << line.str() << "\n";
       draw();
     } else {
-      line << "  | failed " << failed_ << ", elapsed " << common::format_fixed(elapsed(), 1) << " s, left " << eta_text();
+      line << "  | failed " << failed_ << ", " << rate_text() << ", elapsed " << common::format_fixed(elapsed(), 1)
+           << " s, left " << eta_text();
       std::cout << line.str() << std::endl;
     }
   }
+
+  /// A new plan: `total` runs in all, `to_run` of them still to run (IDA rounds).
+  void set_plan(int total, int to_run) {
+    total_ = total;
+    to_run_ = finished_now_ + to_run;
+    draw();
+  }
+
+  int finished_now() const { return finished_now_; }  ///< runs finished since the start
+  int failed() const { return failed_; }               ///< of those, failed
 
   void tick() {
     if (tty_ && !quiet_ && std::chrono::duration<double>(Clock::now() - last_draw_).count() > 0.25) draw();
@@ -63,6 +75,11 @@ class Progress {
 
  private:
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  std::string rate_text() const {
+    const double t = elapsed();
+    return common::format_fixed(t > 0.0 ? finished_now_ / t : 0.0, 2) + " runs/s";
+  }
 
   std::string eta_text() const {
     const int left = to_run_ - finished_now_;
@@ -84,7 +101,8 @@ class Progress {
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
     std::cout << "\r\033[K" << prefix_ << "[" << bar << "] " << done_ << "/" << total_ << " done, " << failed_
-              << " failed, " << running_ << " running, " << common::format_fixed(elapsed(), 0) << " s elapsed, ~"
+              << " failed, " << running_ << " running, " << rate_text() << ", " << common::format_fixed(elapsed(), 0)
+              << " s elapsed, ~"
               << eta_text() << " left" << std::flush;
   }
 

@@ -57,12 +57,15 @@ int batch_worker_command(const BatchWorkerOptions& w) {
   config.output.dir = partial.string();
   if (w.duration_s != 0.0) config.record.duration_s = w.duration_s;
   config.transport.channel_prefix = w.channel_prefix.empty() ? config.transport.channel_prefix : w.channel_prefix;
+  if (!w.transport.empty()) config.transport.kind = w.transport;
+  const bool in_process = config.transport.kind == "in_process";
 
   json info{{"label", w.label},          {"index", w.index},
             {"path", w.record},          {"scale", w.scale},
             {"duration_s", config.record.duration_s},
             {"run_id", run_id},          {"channel_prefix", config.transport.channel_prefix},
-            {"network_namespace", w.shared_netns ? "shared with the batch" : "own"},
+            {"transport", config.transport.kind},
+            {"network_namespace", in_process ? "none (in_process)" : w.shared_netns ? "shared with the batch" : "own"},
             {"started_utc", utc_now()},  {"worker_pid", getpid()}};
 
   if (!infra_failure) {
@@ -79,7 +82,9 @@ int batch_worker_command(const BatchWorkerOptions& w) {
     if (record_ok) {
       // The machinery: own network namespace, LCM, the substructure process.
       try {
-        if (!w.shared_netns) messages::enter_private_network_namespace();
+        if (in_process) {
+          // No LCM and no child process: nothing to isolate.
+        } else if (!w.shared_netns) messages::enter_private_network_namespace();
         else if (!messages::in_private_network_namespace())
           throw messages::TransportError("--shared-netns: the batch is not in a private network namespace");
       } catch (const std::exception& e) {
@@ -92,7 +97,7 @@ int batch_worker_command(const BatchWorkerOptions& w) {
       std::error_code ec;
       info["netns"] = fs::read_symlink("/proc/self/ns/net", ec).string();
       try {
-        if (config.transport.kind == "in_process") {
+        if (in_process) {
           InProcessSubstructure sub(config.damper_model);
           summary = run_hybrid(config, sub, run_id);
         } else {

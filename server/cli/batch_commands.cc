@@ -29,6 +29,10 @@ void add_batch_commands(CLI::App& app) {
   batch->add_option("--jobs", o->jobs, "runs at a time (per MPI rank), at least 1");
   batch->add_option("--duration", o->duration_s,
                     "simulated seconds per run, overriding record.duration_s of the config (-1: whole records)");
+  batch->add_option("--transport", o->transport,
+                    "override transport.kind of the config: in_process (the damper model inside each worker, "
+                    "no LCM: the batch throughput mode) or lcm")
+      ->check(CLI::IsMember({"in_process", "lcm"}));
   batch->add_flag("--mpi", o->mpi, "divide the records among MPI ranks (mpirun -np N hybridsim batch --mpi ...)");
   batch->add_flag("--slurm-task", o->slurm_task,
                   "run only record SLURM_ARRAY_TASK_ID (0-based) of the set; then 'hybridsim batch merge --out DIR'");
@@ -62,6 +66,7 @@ void add_batch_commands(CLI::App& app) {
   worker->add_option("--index", w->index);
   worker->add_option("--duration", w->duration_s);
   worker->add_flag("--shared-netns", w->shared_netns);
+  worker->add_option("--transport", w->transport);
   worker->callback([w] { finish(server::batch_worker_command(*w)); });
 
   batch->callback([o, batch, merge, worker] {

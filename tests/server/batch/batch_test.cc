@@ -195,6 +195,30 @@ TEST(Batch, FourRecordsTwoAtATimeEqualRunningEachRecordAlone) {
   EXPECT_FALSE(fs::exists(dir + "/out/runs/" + kLabels[0] + ".partial"));
 }
 
+// The batch throughput mode: --transport in_process runs the same damper model code inside
+// each worker instead of a brfd-substructure over LCM. On the four real records its results
+// are the LCM batch's, time histories byte for byte and every summary figure exactly.
+TEST(Batch, InProcessTransportGivesTheResultsOfTheLcmRun) {
+  const std::string dir = test_support::fresh_temp_dir("in-process");
+  const auto r = batch({"--config", write_config(dir), "--records", records_dir(), "--out", dir + "/out", "--jobs", "2",
+                        "--transport", "in_process"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  expect_final_line(r.out, 4, 4, 0);
+  for (const std::string& label : kLabels) {
+    SCOPED_TRACE(label);
+    const std::string ip = dir + "/out/runs/" + label, lcm = reference_batch() + "/runs/" + label;
+    expect_same_figures(read_json(ip + "/summary.json"), read_json(lcm + "/summary.json"), label);
+    const std::string th = test_support::read_text(ip + "/time_history.csv");
+    EXPECT_GT(th.size(), 100000u);
+    EXPECT_TRUE(th == test_support::read_text(lcm + "/time_history.csv"));
+    EXPECT_EQ(read_json(ip + "/batch-run.json").at("transport"), "in_process");
+    EXPECT_EQ(read_json(lcm + "/batch-run.json").at("transport"), "lcm");
+    EXPECT_FALSE(fs::exists(ip + "/run.lcmlog"));
+    EXPECT_TRUE(fs::exists(lcm + "/run.lcmlog"));
+  }
+  EXPECT_EQ(test_support::read_text(dir + "/out/summary.csv"), test_support::read_text(reference_batch() + "/summary.csv"));
+}
+
 TEST(Batch, ListFileScalesRecordsForDbeAndMce) {
   const std::string dir = test_support::fresh_temp_dir("list");
   fs::create_directories(dir + "/recs");
