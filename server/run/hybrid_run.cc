@@ -4,7 +4,8 @@
 #include "damper/model/brfd_config.h"
 #include "damper/physical/realtime.h"
 #include "damper/physical/run_key.h"
-#include "server/run/csv_writer.h"
+#include "server/run/hdf5_time_history.h"
+#include "server/run/time_history_writer.h"
 #include "common/process.h"
 #include "structure/cr_integrator.h"
 #include "structure/energy.h"
@@ -14,6 +15,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +38,33 @@ std::vector<std::string> time_history_columns(int stories, int dampers) {
   for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_drum_disp_in");
   for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_force_kip");
   return c;
+}
+
+/// Unit of a time-history column, from its name's suffix (kip, in, s; accelerations in g).
+std::string column_unit(const std::string& column) {
+  const std::string suffix = column.substr(column.rfind('_') + 1);
+  return suffix == "s" ? "s" : suffix == "g" ? "g" : suffix == "in" ? "in" : suffix == "kip" ? "kip" : "";
+}
+
+/// The time-history file of the run in the config's output format.
+std::unique_ptr<TimeHistorySink> make_time_history_sink(const RunConfig& config, const std::vector<std::string>& columns,
+                                                        long expected_rows, const std::string& record_source) {
+  const fs::path dir(config.output.dir);
+  if (config.output.format != "hdf5") return make_csv_time_history((dir / "time_history.csv").string(), columns);
+  std::vector<std::string> units;
+  for (const std::string& c : columns) units.push_back(column_unit(c));
+  const std::vector<std::pair<std::string, std::string>> attributes{
+      {"run", config.name},
+      {"record", record_source},
+      {"units_system", "kip, in, s; accelerations in g"},
+      {"producer", "hybridsim (server/run/hdf5_time_history.h)"},
+      {"effective_config_yaml", run_config_to_yaml(config)}};
+  const std::vector<std::pair<std::string, double>> numbers{
+      {"dt_s", config.dt_s},
+      {"record_scale", config.record.scale},
+      {"output_every_n_steps", static_cast<double>(config.output.every_n_steps)}};
+  return std::make_unique<Hdf5TimeHistory>((dir / "time_history.h5").string(), columns, units, attributes, numbers,
+                                           expected_rows);
 }
 
 nlohmann::json to_json(const Eigen::VectorXd& v) {
@@ -95,8 +124,10 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   s.damper_energy_kip_in = Eigen::VectorXd::Zero(nd);
 
   fs::create_directories(config.output.dir);
-  CsvWriter csv((fs::path(config.output.dir) / "time_history.csv").string(), time_history_columns(n, nd),
-                num_steps / config.output.every_n_steps + 1);
+  const std::vector<std::string> columns = time_history_columns(n, nd);
+  const long expected_rows = num_steps / config.output.every_n_steps + 1;
+  TimeHistoryWriter history(make_time_history_sink(config, columns, expected_rows, record.source), columns.size(),
+                        expected_rows);
 
   structure::CrIntegrator cr(building, dt);
   structure::EnergyLedger energy(building);
@@ -111,15 +142,15 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   Eigen::VectorXd abs_accel_g(n);
 
   auto write_row = [&](double t, double ag_in_s2) {
-    csv.add(t);
-    csv.add(ag_in_s2 / kGravity_in_per_s2);
+    history.add(t);
+    history.add(ag_in_s2 / kGravity_in_per_s2);
     const Eigen::VectorXd& x = cr.displacement_in();
-    for (int i = 0; i < n; ++i) csv.add(x[i]);
-    for (int i = 0; i < n; ++i) csv.add(abs_accel_g[i]);
-    for (int i = 0; i < n; ++i) csv.add(drift[i]);
-    for (int k = 0; k < nd; ++k) csv.add(reply.measured_drum_in[k]);
-    for (int k = 0; k < nd; ++k) csv.add(force[k]);
-    csv.end_row();
+    for (int i = 0; i < n; ++i) history.add(x[i]);
+    for (int i = 0; i < n; ++i) history.add(abs_accel_g[i]);
+    for (int i = 0; i < n; ++i) history.add(drift[i]);
+    for (int k = 0; k < nd; ++k) history.add(reply.measured_drum_in[k]);
+    for (int k = 0; k < nd; ++k) history.add(force[k]);
+    history.end_row();
   };
 
   const auto wall_start = std::chrono::steady_clock::now();
@@ -155,7 +186,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       if ((i + 1) % config.output.every_n_steps == 0) write_row(t_next, ag);
       s.steps = i + 1;
       s.sim_time_s = t_next;
-      if ((i + 1) % config.output.flush_every_steps == 0) csv.hand_over();
+      if ((i + 1) % config.output.flush_every_steps == 0) history.hand_over();
     }
     substructure.stop(false, "record finished");
   } catch (const std::exception& e) {
@@ -167,10 +198,10 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     }
   }
   s.loop_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  csv.finish();
-  if (s.status == "ok" && !csv.error().empty()) {
+  history.finish();
+  if (s.status == "ok" && !history.error().empty()) {
     s.status = "failed";
-    s.error = csv.error();
+    s.error = history.error();
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.residual_drift_in = building.interstory_drift(cr.displacement_in());
@@ -194,6 +225,7 @@ void write_summary_json(const RunSummary& s, const RunConfig& config, const std:
   j["steps"] = s.steps;
   j["dt_s"] = config.dt_s;
   j["output_every_n_steps"] = config.output.every_n_steps;
+  j["time_history_file"] = config.output.format == "hdf5" ? "time_history.h5" : "time_history.csv";
   j["sim_time_s"] = s.sim_time_s;
   j["wall_s"] = s.wall_s;
   j["step_loop_wall_s"] = s.loop_wall_s;

@@ -84,7 +84,8 @@ RunConfig load_run_config(const std::string& path) {
 
   if (top.has("output")) {
     const common::YamlSection o = top.section("output");
-    o.allow_only({"dir", "flush_every_steps", "every_n_steps"});
+    o.allow_only({"dir", "flush_every_steps", "every_n_steps", "format"});
+    c.output.format = o.get_choice("format", c.output.format, {"csv", "hdf5"});
     c.output.every_n_steps = o.get_int("every_n_steps", c.output.every_n_steps);
     if (c.output.every_n_steps < 1) o.fail("every_n_steps", "must be >= 1");
     c.output.dir = resolve(path, o.get_string("dir", c.output.dir));
@@ -120,7 +121,8 @@ std::string run_config_to_yaml(const RunConfig& c) {
     << "\n"
     << "output:\n  dir: " << fs::absolute(c.output.dir).string()
     << "\n  flush_every_steps: " << c.output.flush_every_steps
-    << "\n  every_n_steps: " << c.output.every_n_steps << "\n";
+    << "\n  every_n_steps: " << c.output.every_n_steps
+    << "\n  format: " << c.output.format << "\n";
   if (c.damper.mode == "physical") {
     o << "rig:\n";
     std::istringstream r(damper::physical::physical_settings_to_yaml(c.rig));

@@ -43,6 +43,10 @@ struct OutputSettings {
   std::string dir = "results";       ///< results folder (created)
   int flush_every_steps = 1024;      ///< time-history rows are flushed at least this often
   int every_n_steps = 1;             ///< time-history row every n steps (peaks use every step)
+  /// "csv" (time_history.csv, shortest round-trip text) or "hdf5" (time_history.h5, one
+  /// float64 dataset per column with units and the effective config as attributes;
+  /// hdf5_time_history.h). Same doubles either way.
+  std::string format = "csv";
 };
 
 struct RunConfig {

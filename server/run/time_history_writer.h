@@ -1,10 +1,12 @@
 #pragma once
-/// @file csv_writer.h
-/// CSV time histories written off the step loop. The loop only copies doubles into
-/// preallocated blocks (no formatting, no system call, no allocation while the
-/// preallocation lasts); a writer thread formats them with std::to_chars (shortest
-/// round-trip form, so results reproduce bit for bit) and writes each block out as soon as
-/// it is handed over. hand_over() is non-blocking; finish() waits until every row is on disk.
+/// @file time_history_writer.h
+/// Time histories written off the step loop. The loop only copies doubles into preallocated
+/// blocks (no formatting, no system call, no allocation while the preallocation lasts); a
+/// writer thread hands each block to the file format (time_history_sink.h: CSV in the
+/// shortest round-trip text, or HDF5 columns, hdf5_time_history.h) as soon as it is handed
+/// over. hand_over() is non-blocking; finish() waits until every row is on disk.
+
+#include "server/run/time_history_sink.h"
 
 #include <condition_variable>
 #include <cstdio>
@@ -17,19 +19,19 @@
 
 namespace server {
 
-class CsvWriter {
+class TimeHistoryWriter {
  public:
-  /// Opens (truncates) `path`, writes the header line and starts the writer thread.
-  /// `expected_rows` sizes the preallocated blocks. Throws std::runtime_error naming the file.
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns, long expected_rows);
-  ~CsvWriter();  ///< finish()es
-  CsvWriter(const CsvWriter&) = delete;
-  CsvWriter& operator=(const CsvWriter&) = delete;
+  /// Rows of `columns` values go to `sink`; starts the writer thread. `expected_rows` sizes
+  /// the preallocated blocks.
+  TimeHistoryWriter(std::unique_ptr<TimeHistorySink> sink, std::size_t columns, long expected_rows);
+  ~TimeHistoryWriter();  ///< finish()es
+  TimeHistoryWriter(const TimeHistoryWriter&) = delete;
+  TimeHistoryWriter& operator=(const TimeHistoryWriter&) = delete;
 
   void add(double value) { *cursor_++ = value; }  ///< next value of the current row
   void end_row();     ///< ends the row; hands the block over when it is full
   void hand_over();   ///< gives the rows so far to the writer thread (non-blocking)
-  void finish();      ///< hands over, waits until everything is written and flushed
+  void finish();      ///< hands over, waits until everything is written, closes the file
   /// Error of the writer thread, "" if none (a full disk must not go unnoticed).
   std::string error() const;
 
@@ -47,8 +49,7 @@ class CsvWriter {
   alignas(64) double* cursor_ = nullptr;
   double* block_end_ = nullptr;
   Block* current_ = nullptr;
-  alignas(64) std::FILE* file_ = nullptr;
-  std::string path_;
+  alignas(64) std::unique_ptr<TimeHistorySink> sink_;
   std::size_t columns_ = 0;
   std::size_t block_values_ = 0;
   std::deque<Block> storage_;        // preallocated blocks (stable addresses), reused
@@ -60,7 +61,6 @@ class CsvWriter {
   bool stopping_ = false;
   bool busy_ = false;
   std::string error_;
-  std::vector<char> text_;
   std::thread thread_;
 };
 
