@@ -3,12 +3,14 @@
 //   bench                    LCM and step round trips, in-process speed (server/run/bench.h)
 //   damper ...               damper model tools (server/cli/damper_commands.h)
 //   batch ...                many records (server/cli/batch_commands.h)
+//   ida ...                  incremental dynamic analysis, fragility (server/cli/ida_commands.h)
 //   diagnose ...             model-discrepancy workflow (server/cli/diagnose_commands.h)
 // Each command group lives in server/cli/<group>_commands.cc.
 #include "server/run/bench.h"
 #include "server/run/hybrid_run.h"
 #include "server/cli/damper_commands.h"
 #include "server/cli/batch_commands.h"
+#include "server/cli/ida_commands.h"
 #include "server/cli/diagnose_commands.h"
 
 #include <CLI/CLI.hpp>
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
 
   add_damper_commands(app);
   add_batch_commands(app);
+  add_ida_commands(app);
   add_diagnose_commands(app);
 
   int code = 0;

@@ -38,7 +38,8 @@ const std::map<std::string, int> kRank = {
     {"validation", 6},
     {"server/run", 7},
     {"server/batch", 8},
-    {"server/cli", 9},
+    {"server/ida", 9},
+    {"server/cli", 10},
 };
 
 // Longest folder of kRank that contains `rel` (a path relative to the source root), or "".
