@@ -5,7 +5,9 @@
 /// (docs/physical.md, "Lab-side protocol").
 ///
 /// send() is the only way a command leaves this process, and it runs the safety layer
-/// first: a setpoint that fails a limit is never encoded, signed or published.
+/// first: a setpoint that fails a limit is never encoded, signed or published. Times (frame
+/// arrival, command utime) come from the transport's clock, so it runs on the in-memory fake
+/// (messages/in_memory_lcm.h) exactly as on liblcm.
 
 #include "damper/physical/command_auth.h"
 #include "damper/physical/safety.h"
@@ -13,6 +15,7 @@
 #include "hybrid_lcm/actuator_command_t.hpp"
 #include "hybrid_lcm/sensor_frame_t.hpp"
 #include "messages/lcm_bus.h"
+#include "messages/transport.h"
 
 #include <chrono>
 #include <cstdint>
@@ -23,10 +26,10 @@ namespace damper::physical {
 
 class ActuatorInterface {
  public:
-  using Clock = std::chrono::steady_clock;
+  using TimePoint = messages::TimePoint;
 
   /// Subscribes to the sensor frames of `channels` on `lcm`.
-  ActuatorInterface(lcm::LCM& lcm, const messages::Channels& channels, const RunKey& key, SafetyLayer& safety);
+  ActuatorInterface(messages::LcmInterface& lcm, const messages::Channels& channels, const RunKey& key, SafetyLayer& safety);
   ActuatorInterface(const ActuatorInterface&) = delete;
   ActuatorInterface& operator=(const ActuatorInterface&) = delete;
 
@@ -45,7 +48,7 @@ class ActuatorInterface {
   /// Sensor frames received so far, the newest one and when it arrived.
   long frames_received() const { return frames_; }
   const hybrid_lcm::sensor_frame_t& latest_frame() const { return frame_; }
-  Clock::time_point last_frame_time() const { return last_frame_time_; }
+  TimePoint last_frame_time() const { return last_frame_time_; }
   /// Longest time between two consecutive frames since reset_frame_gap() (s).
   double max_frame_gap_s() const { return max_gap_s_; }
   void reset_frame_gap() { max_gap_s_ = 0.0; }
@@ -58,9 +61,9 @@ class ActuatorInterface {
   void record_frames(std::vector<FrameSample>* sink) { frame_sink_ = sink; }
 
  private:
-  void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_frame();
 
-  lcm::LCM& lcm_;
+  messages::LcmInterface& lcm_;
   messages::Channels channels_;
   CommandSigner signer_;
   SafetyLayer& safety_;
@@ -74,7 +77,7 @@ class ActuatorInterface {
   double max_gap_s_ = 0.0;
   bool bound_ = false;
   std::vector<FrameSample>* frame_sink_ = nullptr;
-  Clock::time_point last_frame_time_{};
+  TimePoint last_frame_time_{};
 };
 
 }  // namespace damper::physical

@@ -7,8 +7,11 @@
 
 #include "damper/model/brfd_model.h"
 #include "messages/lcm_bus.h"
+#include "messages/substructure_endpoint.h"
+#include "messages/transport.h"
 
 #include <string>
+#include <vector>
 
 namespace damper {
 
@@ -23,6 +26,33 @@ struct SubstructureNodeOptions {
   double max_drum_velocity_in_per_s = 200.0; ///< commands beyond this are refused (fault)
   double command_watchdog_s = 30.0;  ///< exit with an error if a started run goes silent this long
   double heartbeat_period_s = 0.2;
+};
+
+/// The virtual node as a messages::LoopActor on any messages::LcmInterface; its protocol side
+/// is messages::SubstructureEndpoint, shared with the physical node.
+class SubstructureNode : public messages::LoopActor, private messages::SubstructureEndpoint::Listener {
+ public:
+  SubstructureNode(messages::LcmInterface& lcm, const SubstructureNodeOptions& options);
+  void advance(messages::TimePoint now) override;
+  messages::TimePoint next_deadline(messages::TimePoint now) const override;
+  bool finished() const override { return exit_code_ >= 0; }
+  /// 0 STOP, 3 ABORT, 1 command watchdog; -1 while running.
+  int exit_code() const { return exit_code_; }
+  long steps() const { return steps_; }
+
+ private:
+  void on_run_control(const hybrid_lcm::run_control_t& msg, messages::TimePoint now) override;
+  void on_drift(hybrid_lcm::drift_command_t& cmd, messages::TimePoint now) override;
+  int8_t heartbeat_state() const override;
+  void fault(int64_t step, const std::string& why);
+
+  SubstructureNodeOptions o_;
+  messages::SubstructureEndpoint endpoint_;
+  std::vector<BrfdModel> models_;
+  double dt_s_ = 0.0;
+  bool started_ = false;
+  long steps_ = 0;
+  int exit_code_ = -1;
 };
 
 /// Runs until STOP (returns 0), ABORT (returns 3) or a watchdog/transport error (returns 1).
