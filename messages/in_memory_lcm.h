@@ -55,6 +55,7 @@ class InMemoryBus {
   /// Discrete-event scheduler for several processes: repeatedly moves the clock to the
   /// earliest of the next delivery and the actors' next deadlines, delivers what is due and
   /// advances every unfinished actor, until `done()` or `limit` (simulated). Returns done().
+  /// An actor that has run at the current time and asks for it again is run 1 us later.
   bool run(const std::vector<LoopActor*>& actors, const std::function<bool()>& done, TimePoint limit);
 
   /// Fault injection.

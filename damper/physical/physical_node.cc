@@ -163,8 +163,10 @@ TimePoint PhysicalNode::next_deadline(TimePoint now) const {
     case Phase::hold:
     case Phase::safe_ramp: d = std::min(d, next_tick_); break;
     case Phase::running:
-      d = std::min(d, act_.last_frame_time() + seconds(s_.watchdogs.sensor_frame_timeout_s));
-      d = std::min(d, endpoint_.last_command_time() + seconds(s_.watchdogs.server_command_timeout_s));
+      // Just past each watchdog limit (they trip on "longer than").
+      d = std::min(d, act_.last_frame_time() + seconds(s_.watchdogs.sensor_frame_timeout_s) + std::chrono::microseconds(1));
+      d = std::min(d, endpoint_.last_command_time() + seconds(s_.watchdogs.server_command_timeout_s) +
+                          std::chrono::microseconds(1));
       break;
     default: break;
   }
