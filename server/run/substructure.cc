@@ -5,6 +5,8 @@
 #include "hybrid_lcm/heartbeat_t.hpp"
 #include "hybrid_lcm/run_control_t.hpp"
 
+#include "messages/transport.h"
+
 #include <lcm/lcm-cpp.hpp>
 
 #include <cmath>
@@ -37,7 +39,7 @@ void InProcessSubstructure::exchange(long, double, const Eigen::VectorXd& drum_d
 
 struct LcmSubstructure::Impl {
   LcmLinkSettings settings;
-  std::unique_ptr<lcm::LCM> lcm;
+  std::unique_ptr<messages::LcmTransport> lcm;  // handler exceptions come back after lcm_handle
   std::unique_ptr<lcm::LogFile> log;
   std::string run_id;
   int num_dampers = 0;
@@ -62,26 +64,29 @@ struct LcmSubstructure::Impl {
 
   template <class T>
   void publish(const std::string& channel, const T& msg) {
-    const int size = msg.getEncodedSize();
-    encode_buffer.resize(static_cast<std::size_t>(size));
-    msg.encode(encode_buffer.data(), 0, size);
-    if (lcm->publish(channel, encode_buffer.data(), static_cast<unsigned>(size)) != 0) {
-      throw SubstructureError("LCM publish failed on channel '" + channel + "'");
+    try {
+      messages::publish_message(*lcm, channel, msg, encode_buffer);
+    } catch (const std::exception& e) {
+      throw SubstructureError(e.what());
     }
-    log_event(channel, encode_buffer.data(), size);
+    log_event(channel, encode_buffer.data(), static_cast<int>(encode_buffer.size()));
   }
 
-  void on_feedback(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    log_event(channel, rbuf->data, static_cast<int>(rbuf->data_size));
-    hybrid_lcm::force_feedback_t msg = messages::decode<hybrid_lcm::force_feedback_t>(*rbuf, channel);
+  // Handlers run inside messages::LcmTransport's guard: a DecodeError is rethrown by
+  // handle_until after lcm_handle has returned, never through liblcm.
+  void on_feedback(const messages::RawMessage& m) {
+    log_event(m.channel, m.data, static_cast<int>(m.size));
+    hybrid_lcm::force_feedback_t msg;
+    messages::decode_message(m, msg);
     if (msg.run_id != run_id || msg.step != expected_step) return;  // other run or stale reply
     feedback = std::move(msg);
     have_feedback = true;
   }
 
-  void on_heartbeat(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    log_event(channel, rbuf->data, static_cast<int>(rbuf->data_size));
-    hybrid_lcm::heartbeat_t hb = messages::decode<hybrid_lcm::heartbeat_t>(*rbuf, channel);
+  void on_heartbeat(const messages::RawMessage& m) {
+    log_event(m.channel, m.data, static_cast<int>(m.size));
+    hybrid_lcm::heartbeat_t hb;
+    messages::decode_message(m, hb);
     if (hb.run_id != run_id) return;
     if (hb.state == hybrid_lcm::heartbeat_t::STATE_READY || hb.state == hybrid_lcm::heartbeat_t::STATE_RUNNING)
       substructure_ready = true;
@@ -92,10 +97,12 @@ struct LcmSubstructure::Impl {
   template <class Pred>
   bool pump_until(Pred done, Clock::time_point deadline) {
     while (!done()) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-      if (left <= 0) return false;
-      const int rc = lcm->handleTimeout(static_cast<int>(std::min<long>(left, 50)));
-      if (rc < 0) throw SubstructureError("LCM handle() failed on URL '" + settings.url + "'");
+      if (Clock::now() >= deadline) return false;
+      try {
+        lcm->handle_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(50)));
+      } catch (const messages::TransportError& e) {
+        throw SubstructureError("LCM handle() failed on URL '" + settings.url + "': " + e.what());
+      }
     }
     return true;
   }
@@ -103,15 +110,16 @@ struct LcmSubstructure::Impl {
 
 LcmSubstructure::LcmSubstructure(const LcmLinkSettings& settings) : impl_(std::make_unique<Impl>()) {
   impl_->settings = settings;
-  impl_->lcm = messages::open_lcm(settings.url, settings.lab_network);
+  impl_->lcm = std::make_unique<messages::LcmTransport>(settings.url, settings.lab_network);
   if (!settings.log_path.empty()) {
     impl_->log = std::make_unique<lcm::LogFile>(settings.log_path, "w");
     if (!impl_->log->good()) throw SubstructureError("cannot write LCM log " + settings.log_path);
     // A large stdio buffer keeps log writes to one write() per MiB, off the step's p99.
     std::setvbuf(impl_->log->getFilePtr(), nullptr, _IOFBF, 1 << 20);
   }
-  impl_->lcm->subscribe(settings.channels.force_feedback(), &Impl::on_feedback, impl_.get());
-  impl_->lcm->subscribe(settings.channels.heartbeat(), &Impl::on_heartbeat, impl_.get());
+  Impl* impl = impl_.get();
+  impl_->lcm->subscribe(settings.channels.force_feedback(), [impl](const messages::RawMessage& m) { impl->on_feedback(m); });
+  impl_->lcm->subscribe(settings.channels.heartbeat(), [impl](const messages::RawMessage& m) { impl->on_heartbeat(m); });
 }
 
 LcmSubstructure::~LcmSubstructure() = default;

@@ -11,7 +11,7 @@
 //  - forged, replayed, stale and out-of-limit commands are rejected by a running rig.
 // The target drum displacement is an earthquake-like closed form (three tones under a rising
 // envelope) instead of the building's response: the substructure's logic is what is tested.
-#include "damper/brfd_config.h"
+#include "damper/model/brfd_config.h"
 #include "damper/physical/command_auth.h"
 #include "damper/physical/physical_node.h"
 #include "damper/rig/rig_config.h"
@@ -19,7 +19,7 @@
 #include "hybrid_lcm/actuator_command_t.hpp"
 #include "hybrid_lcm/sensor_frame_t.hpp"
 #include "messages/in_memory_lcm.h"
-#include "server/run_config.h"
+#include "server/run/run_config.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

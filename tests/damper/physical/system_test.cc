@@ -246,7 +246,10 @@ TEST_P(SafetyTrip, TripsHoldsRampsToSafeAndNoOutOfLimitCommandReachesTheRig) {
   EXPECT_EQ(safety.value("status", std::string()), "tripped");
   EXPECT_NE(reason.find("limits." + key), std::string::npos) << reason;
   EXPECT_NE(r.err.find("limits." + key), std::string::npos) << r.err;  // the user is told why
-  // The run really started and stopped early; every step computed is on disk.
+  // The run really started and stopped early; every step computed is on disk. Step counts, not
+  // wall-clock figures: each limit is reached while El Centro's motion grows (measured
+  // 700-3000 steps; on the simulated clock 666-1026 for the closed-form target), after the
+  // 0.25 s (256-step) ramp-in and before the 5 s record ends.
   const long steps = summary.value("steps", 0L);
   EXPECT_GT(steps, 500);
   EXPECT_LT(steps, 5 * 1024);
@@ -365,6 +368,10 @@ TEST(PhysicalSystem, ServerGoesSilentAndTheSubstructureTripsOnItsCommandWatchdog
   EXPECT_EQ(code, 4) << test_support::read_text(out + "/substructure.log");
   EXPECT_NE(safety.value("reason", std::string()).find("server command watchdog"), std::string::npos) << safety.dump(2);
   EXPECT_EQ(safety.value("last_answered_step", -1L), 600);
+  // Wall clock. Expected: the watchdog (server_command_timeout_s, 0.25 s; exactly 0.25 s + one
+  // period on the simulated clock, sim_system_test.cc) + hold_s 0.05 s + the safe ramp
+  // (>= ramp_out_s 0.5 s) + writing results and exiting (~0.1 s): ~0.9 s. Bound: 0.25 + 1.5 s,
+  // i.e. 0.85 s of margin for scheduling on a loaded 2-core machine.
   EXPECT_LT(after, c.rig.watchdogs.server_command_timeout_s + 1.5);
   EXPECT_EQ(rig.wait_or_kill(5.0), 0);
   const auto log = read_rig_log(out + "/rig-commands.csv");
@@ -407,7 +414,10 @@ TEST(PhysicalSystem, RigKilledMidRunStopsTheServerWithinFiveStepsWithEverythingO
     _exit(127);
   }
   ASSERT_GT(pid, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // mid-run (start takes ~0.5 s)
+  // Mid-run: hybridsim, brfd-rig and brfd-substructure start, position (0.25 s) and handshake in
+  // ~0.5-0.8 s; the 10 s record then runs at 1024 steps/s (1.0-1.7 controller periods per step
+  // under load), so after 2.5 s of wall clock it is 700-2000 steps in (bound below: > 1024).
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
   const pid_t rig = child_named(pid, "brfd-rig");
   ASSERT_GT(rig, 0) << "brfd-rig not found among hybridsim's children";
   ASSERT_EQ(kill(rig, SIGKILL), 0);
@@ -431,9 +441,14 @@ TEST(PhysicalSystem, RigKilledMidRunStopsTheServerWithinFiveStepsWithEverythingO
   EXPECT_NE(error.find("safety trip"), std::string::npos) << error;
   EXPECT_NE(error.find("sensor frame watchdog"), std::string::npos) << error;
   EXPECT_NE(err.find("sensor frame watchdog"), std::string::npos) << err;  // a clear message to the user
-  EXPECT_GT(steps, 1024);           // really mid-run
+  EXPECT_GT(steps, 1024);           // really mid-run (see the sleep above)
   EXPECT_LT(steps, 10 * 1024);
+  // Steps, not wall clock: every step waits for a frame, so none is answered without one
+  // (measured 0; simulated 0); 5 is the requirement.
   EXPECT_LE(steps - last_step_with_a_frame, 5);
+  // Wall clock. Expected: frame watchdog 0.05 s + hold 0.05 s + safe ramp >= 0.5 s + results
+  // written, processes reaped: measured 0.65-0.9 s. Bound 3 s: 2 s of margin for a loaded
+  // machine.
   EXPECT_LT(after, 3.0);
   // Everything up to the failure is on disk: one time-history row per step (+ t = 0), one
   // physical row per answered step.
@@ -469,6 +484,9 @@ TEST(PhysicalSystem, RunningRigRejectsForgedReplayedAndStaleCommandsAndSaysSo) {
                            dir + "/rig.log");
   auto lcm = messages::open_lcm(url, false);
   FrameWatcher w(*lcm, prefix);
+  // Each wait is for one frame of a 1024 Hz rig (~1 ms); 5 s is a deadline, not a measurement.
+  // The good commands must reach the rig within auth.max_command_age_s (50 ms) of their utime:
+  // loopback delivery takes ~0.1 ms (a 500x margin; the rig runs SCHED_FIFO when allowed).
   auto pump_until = [&](const std::function<bool()>& done) {
     const auto deadline = Clock::now() + std::chrono::seconds(5);
     while (!done() && Clock::now() < deadline) lcm->handleTimeout(10);
@@ -602,6 +620,7 @@ TEST(PhysicalSystem, RigReplaysAMeasuredTest) {
     }
   } sink{&frames};
   lcm->subscribe(prefix + "SENSOR_FRAME", &Sink::on, &sink);
+  // 300 frames at 1024 Hz take 0.29 s; 5 s is a deadline (17x), not a measurement.
   const auto deadline = Clock::now() + std::chrono::seconds(5);
   while (frames.size() < 300 && Clock::now() < deadline) lcm->handleTimeout(10);
   ASSERT_GE(frames.size(), 300u) << test_support::read_text(dir + "/rig.log");
