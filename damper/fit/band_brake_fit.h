@@ -8,9 +8,9 @@
 /// Cost (minimised): mean over the windows of (RMSE_F / std_F)² + w (RMSE_cells / std_cells)²,
 /// the drum force and both actuator load cells (lb in the files, kip here) of each window.
 
-#include "damper/brfd_data.h"
+#include "damper/data/brfd_data.h"
 #include "damper/model/band_brake_model.h"
-#include "damper/replay.h"
+#include "damper/data/replay.h"
 
 #include <array>
 #include <optional>

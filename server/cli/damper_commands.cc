@@ -6,6 +6,7 @@
 #include "damper/fit/identification.h"
 #include "damper/fit/predict.h"
 #include "damper/fit/relationships.h"
+#include "damper/fit/validate.h"
 
 #include <iostream>
 #include <memory>
@@ -47,7 +48,7 @@ void guarded(F&& body) {
 }  // namespace
 
 void add_damper_commands(CLI::App& app) {
-  CLI::App* damper = app.add_subcommand("damper", "BRFD damper model tools (predict, identify, relationships)");
+  CLI::App* damper = app.add_subcommand("damper", "BRFD damper model tools (predict, identify, relationships, validate)");
   damper->require_subcommand(1);
 
   // --- predict -------------------------------------------------------------------------
@@ -134,6 +135,35 @@ void add_damper_commands(CLI::App& app) {
     guarded([&]() {
       const damper::RelationshipsReport r = damper::derive_relationships(*data_dir, {});
       std::cout << damper::format_relationships(r);
+    });
+  });
+
+  // --- validate ------------------------------------------------------------------------
+  struct ValidateArgs {
+    std::string config, out;
+    bool no_figure = false;
+  };
+  auto va = std::make_shared<ValidateArgs>();
+  CLI::App* val = damper->add_subcommand(
+      "validate",
+      "One table, model x test (paper_semiactive LuGre vs band_brake): semi-active tests "
+      "(RMSE/std, identified on their passive cycles), earthquake tests and held-out "
+      "characterization tests (identified on characterization data only; NRMSE(range) and "
+      "RMSE/std, whole and strong-motion window), actuator load cells; a PNG per test");
+  val->add_option("--config", va->config, "validation config YAML (configs/brfd-validate.yaml)")
+      ->required()->check(CLI::ExistingFile);
+  val->add_option("--out", va->out, "output directory (overrides out_dir of the config)");
+  val->add_flag("--no-figure", va->no_figure, "do not run gnuplot");
+  val->callback([va]() {
+    guarded([&]() {
+      damper::ValidationConfig c = damper::load_validation_config(va->config);
+      if (!va->out.empty()) c.out_dir = va->out;
+      if (va->no_figure) c.figures = false;
+      const damper::ValidationResult r =
+          damper::run_validation(c, [](const std::string& line) { std::cerr << line << std::endl; });
+      for (const std::string& w : r.warnings) std::cerr << "warning: " << w << std::endl;
+      for (const std::string& png : r.png_paths) std::cerr << "wrote " << png << std::endl;
+      std::cout << damper::format_validation_table(r) << std::flush;
     });
   });
 }
