@@ -2,10 +2,14 @@
 
 #include "server/run/hybrid_run.h"
 #include "common/process.h"
+#include "damper/model/band_brake_model.h"
+#include "damper/model/brfd_model.h"
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -28,6 +32,29 @@ std::string temp_dir(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("hybridsim-bench-" + std::to_string(getpid())) / name;
   fs::create_directories(p);
   return p.string();
+}
+
+/// Mean wall time (ns) of one damper-model step (the virtual damper's whole work per 1024 Hz
+/// step) over 60 s of an earthquake-like drum motion (sum of decaying sines), best of 5.
+template <typename Step>
+double model_step_ns(Step&& step) {
+  constexpr int kSteps = 60 * 1024;
+  constexpr double dt = 1.0 / 1024.0;
+  std::vector<double> x(kSteps), v(kSteps);
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = i * dt, env = std::exp(-0.05 * t);
+    x[i] = env * (0.3 * std::sin(2.1 * t) + 0.15 * std::sin(7.3 * t + 1.0) + 0.05 * std::sin(19.0 * t));
+    v[i] = env * (0.63 * std::cos(2.1 * t) + 1.095 * std::cos(7.3 * t + 1.0) + 0.95 * std::cos(19.0 * t)) - 0.05 * x[i];
+  }
+  double best = 1e300, sink = 0.0;
+  for (int r = 0; r < 5; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < kSteps; ++i) sink += step(x[i], v[i], dt);
+    const auto t1 = std::chrono::steady_clock::now();
+    best = std::min(best, std::chrono::duration<double, std::nano>(t1 - t0).count() / kSteps);
+  }
+  if (!std::isfinite(sink)) throw std::runtime_error("model step bench: non-finite force");
+  return best;
 }
 
 /// In-process speed of one config (damper model called directly), full-rate time history on
@@ -112,6 +139,25 @@ int bench_command(const BenchOptions& options) {
       step_us = sub.round_trip_us();
       std::printf("3-story over LCM: %ld steps, %.2f s simulated in %.2f s wall (%.1fx real time)\n",
                   s.steps, s.sim_time_s, s.wall_s, s.sim_time_s / s.wall_s);
+    }
+
+    // 3. One damper-model step (budget: 2 us at 1024 Hz), shipped band-brake and paper models.
+    {
+      damper::BandBrakeParams bp;
+      bp.backlash_in = 0.06;
+      bp.band_hardening_per_in = 0.08;
+      bp.transition_exponent = 1.7;
+      bp.wrap_change_rad_per_in = -0.11;
+      damper::BandBrakeModel band(bp);
+      const double band_ns = model_step_ns([&](double x, double v, double dt) {
+        return band.step({x, v, bp.actuator1_initial_in, bp.actuator2_initial_in}, dt);
+      });
+      damper::BrfdModel paper(damper::BrfdParams{});
+      const double paper_ns = model_step_ns([&](double x, double v, double dt) {
+        return paper.step({x, v, 0.655, 0.8559}, dt);
+      });
+      std::printf("damper model step (best of 5, 61440 steps): band_brake %.0f ns, paper_semiactive %.0f ns "
+                  "(budget 2000 ns at 1024 Hz)\n", band_ns, paper_ns);
     }
 
     // 3. In-process speed.
