@@ -70,10 +70,14 @@ Context make_context() {
 
 // ---- The ODE: state y = [x (n), v (n), z (nd)]. ----
 
+// The dampers of the reference: one DamperModel each (damper/model/damper_model.h) in its
+// continuous form; damper j's states sit at offset[j] in the damper part of the ODE state.
 struct DamperInputs {
   const ShearBuilding* building = nullptr;
-  std::vector<damper::BrfdModel> models;
+  std::vector<std::unique_ptr<damper::DamperModel>> models;
   std::vector<damper::DamperInput> inputs;  // actuator positions preset; drum filled per call
+  std::vector<int> offset;                  // first state of damper j
+  int num_states = 0;                       // all damper states
 
   void set_drum(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& v) {
     const Eigen::MatrixXd& gamma = building->damper_gamma();
@@ -94,11 +98,13 @@ DamperInputs make_dampers(const ShearBuilding& building, const std::vector<dampe
   DamperInputs d;
   d.building = &building;
   for (const damper::BrfdParams& p : params) {
-    d.models.emplace_back(p);
+    d.models.push_back(damper::make_damper_model(p));
     damper::DamperInput in;
-    in.actuator1_in = p.semiactive.actuator1_initial_in;
-    in.actuator2_in = p.semiactive.actuator2_initial_in;
+    in.actuator1_in = d.models.back()->actuator1_rest_in();
+    in.actuator2_in = d.models.back()->actuator2_rest_in();
     d.inputs.push_back(in);
+    d.offset.push_back(d.num_states);
+    d.num_states += d.models.back()->num_states();
   }
   return d;
 }
@@ -126,16 +132,18 @@ int ode_rhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   try {
     const Eigen::Index n = d->building->num_stories();
     const Eigen::Index nd = d->building->num_dampers();
-    Eigen::Map<const Eigen::VectorXd> state(N_VGetArrayPointer(y), 2 * n + nd);
-    Eigen::Map<Eigen::VectorXd> rate(N_VGetArrayPointer(ydot), 2 * n + nd);
+    const Eigen::Index ns = d->dampers.num_states;
+    Eigen::Map<const Eigen::VectorXd> state(N_VGetArrayPointer(y), 2 * n + ns);
+    Eigen::Map<Eigen::VectorXd> rate(N_VGetArrayPointer(ydot), 2 * n + ns);
     const auto x = state.segment(0, n);
     const auto v = state.segment(n, n);
     d->dampers.set_drum(x, v);
     for (Eigen::Index j = 0; j < nd; ++j) {
-      const double z = state(2 * n + j);
-      const damper::DamperInput& in = d->dampers.inputs[j];
-      rate(2 * n + j) = d->dampers.models[j].bristle_rate(z, in);
-      d->force(j) = d->dampers.models[j].force_kip(z, in);
+      const Eigen::Index at = 2 * n + d->dampers.offset[static_cast<std::size_t>(j)];
+      const damper::DamperInput& in = d->dampers.inputs[static_cast<std::size_t>(j)];
+      const damper::DamperModel& model = *d->dampers.models[static_cast<std::size_t>(j)];
+      model.state_rate(state.data() + at, in, rate.data() + at);
+      d->force(j) = model.force_for_states(state.data() + at, in);
     }
     const double ug = d->motion->accel_in_per_s2(t);
     d->rhs.noalias() = -ug * d->mass_iota;
@@ -197,7 +205,7 @@ ResponseHistory simulate_monolithic(const ShearBuilding& building, const GroundM
   const double duration = options.duration_s > 0.0 ? options.duration_s : motion.duration_s();
   const long num_outputs = static_cast<long>(std::floor(duration / options.output_dt_s + 1e-9));
   const long last_sample = static_cast<long>(motion.accel_g.size()) - 1;
-  const sunindextype size = 2 * n + nd;
+  const sunindextype size = 2 * n + data.dampers.num_states;
 
   // Declared in creation order, so they are freed in reverse (context last).
   Context ctx = make_context();
@@ -206,6 +214,9 @@ ResponseHistory simulate_monolithic(const ShearBuilding& building, const GroundM
   state.setZero();
   if (options.initial_floor_disp_in.size() == n) state.segment(0, n) = options.initial_floor_disp_in;
   if (options.initial_floor_vel_in_per_s.size() == n) state.segment(n, n) = options.initial_floor_vel_in_per_s;
+  for (int j = 0; j < nd; ++j)
+    data.dampers.models[static_cast<std::size_t>(j)]->initial_states(state.data() + 2 * n +
+                                                                      data.dampers.offset[static_cast<std::size_t>(j)]);
   DenseMatrix jac(check_ptr(SUNDenseMatrix(size, size, ctx.get()), "SUNDenseMatrix"));
   LinearSolver solver(check_ptr(SUNLinSol_Dense(y.get(), jac.get(), ctx.get()), "SUNLinSol_Dense"));
   CvodeMemory cvode(check_ptr(CVodeCreate(CV_BDF, ctx.get()), "CVodeCreate"));
@@ -227,7 +238,10 @@ ResponseHistory simulate_monolithic(const ShearBuilding& building, const GroundM
     const Eigen::VectorXd v = state.segment(n, n);
     data.dampers.set_drum(x, v);
     Eigen::VectorXd f(nd);
-    for (int j = 0; j < nd; ++j) f(j) = data.dampers.models[j].force_kip(state(2 * n + j), data.dampers.inputs[j]);
+    for (int j = 0; j < nd; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      f(j) = data.dampers.models[jj]->force_for_states(state.data() + 2 * n + data.dampers.offset[jj], data.dampers.inputs[jj]);
+    }
     record_sample(history, t, x, v, f);
   };
   record(0.0);
@@ -262,39 +276,6 @@ ResponseHistory simulate_monolithic(const ShearBuilding& building, const GroundM
       ++j;
       set_stop_time(std::min(break_time(j), duration + options.output_dt_s));
     }
-  }
-  return history;
-}
-
-ResponseHistory simulate_cr_in_process(const ShearBuilding& building, const GroundMotion& motion,
-                                       const std::vector<damper::BrfdParams>& damper_per_placement,
-                                       double dt_s, double duration_s) {
-  DamperInputs dampers = make_dampers(building, damper_per_placement, "simulate_cr_in_process");
-  CrIntegrator cr(building, dt_s);
-  const int n = building.num_stories();
-  const int nd = building.num_dampers();
-  const double duration = duration_s > 0.0 ? duration_s : motion.duration_s();
-  const long num_steps = std::lround(duration / dt_s);
-
-  ResponseHistory history;
-  history.time_s.reserve(num_steps + 1);
-  history.floor_disp_in.reserve(num_steps + 1);
-  history.floor_vel_in_per_s.reserve(num_steps + 1);
-  history.damper_force_kip.reserve(num_steps + 1);
-
-  Eigen::VectorXd force(nd);
-  dampers.set_drum(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
-  for (int j = 0; j < nd; ++j) force(j) = dampers.models[j].force_kip(0.0, dampers.inputs[j]);
-  cr.initialize(motion.accel_in_per_s2(0.0), force);
-  record_sample(history, 0.0, cr.displacement_in(), cr.velocity_in_per_s(), force);
-
-  for (long step = 1; step <= num_steps; ++step) {
-    cr.predict();
-    dampers.set_drum(cr.next_displacement_in(), cr.next_velocity_in_per_s());
-    for (int j = 0; j < nd; ++j) force(j) = dampers.models[j].step(dampers.inputs[j], dt_s);
-    const double t_next = static_cast<double>(step) * dt_s;
-    cr.complete(motion.accel_in_per_s2(t_next), force);
-    record_sample(history, cr.time_s(), cr.displacement_in(), cr.velocity_in_per_s(), force);
   }
   return history;
 }

@@ -2,13 +2,14 @@
 /// @file monolithic_reference.h
 /// Reference solutions of the building with its BRFD dampers, without any substructuring:
 ///  - simulate_monolithic(): SUNDIALS CVODE (BDF, dense direct linear solver) integrates the
-///    building state [x, ẋ] and one LuGre bristle state z per damper as ONE stiff ODE,
+///    building state [x, ẋ] and every damper model's internal states z (the LuGre bristle
+///    state for BrfdModel) as ONE stiff ODE,
 ///      ẋ = v,  M v̇ = −M ι ü_g(t) − C v − K x − Γ F(z, Γᵀx, Γᵀv),
-///      ż_j = damper::BrfdModel::bristle_rate(z_j, ·)   (Eq. 1 of the BRFD paper),
-///      F_j = damper::BrfdModel::force_kip(z_j, ·)       (Eq. 3),
-///    with the semi-active actuators held at their initial positions x'_1, x'_2.
-///  - simulate_cr_in_process(): the CR integrator with BrfdModel::step() called in-process,
-///    i.e. the hybrid step loop with a virtual damper and no transport.
+///      ż_j = DamperModel::state_rate(z_j, ·)       (Eq. 1 of the BRFD paper for BrfdModel),
+///      F_j = DamperModel::force_for_states(z_j, ·)  (Eq. 3),
+///    with the semi-active actuators held at their rest positions x'_1, x'_2.
+/// It judges the real step loop (server::run_hybrid with an in-process substructure): see
+/// tests/validation.
 /// Ground acceleration is the record linearly interpolated (GroundMotion::accel_in_per_s2).
 /// Units: s, in, in/s, kip.
 
@@ -52,14 +53,5 @@ class SolverError : public std::runtime_error {
 ResponseHistory simulate_monolithic(const ShearBuilding& building, const GroundMotion& motion,
                                     const std::vector<damper::BrfdParams>& damper_per_placement,
                                     const ReferenceOptions& options);
-
-/// Runs the CR integrator from rest with time step dt_s, computing each damper force with
-/// damper::BrfdModel::step() at drum displacement Γᵀx₊ and drum velocity Γᵀv₊ (semi-active
-/// actuators held at their initial positions). Outputs every step, t = 0 included.
-/// @param duration_s simulated time, s; <= 0: the whole record
-/// @throws std::invalid_argument on a damper-count mismatch or a bad dt_s.
-ResponseHistory simulate_cr_in_process(const ShearBuilding& building, const GroundMotion& motion,
-                                       const std::vector<damper::BrfdParams>& damper_per_placement,
-                                       double dt_s, double duration_s);
 
 }  // namespace structure

@@ -71,7 +71,7 @@ BrfdParams load_brfd_params(const std::string& path) {
 
 std::string brfd_params_to_yaml(const BrfdParams& p) {
   std::ostringstream o;
-  o << std::setprecision(10);
+  o << std::setprecision(17);
   const LugreParams& g = p.lugre;
   o << "model: " << to_string(p.kind) << "\n"
     << "lugre:\n"

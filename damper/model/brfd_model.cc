@@ -13,6 +13,10 @@ namespace {
 constexpr double kInitialSlowSpeed = 1e3;
 }  // namespace
 
+std::unique_ptr<DamperModel> make_damper_model(const BrfdParams& params) {
+  return std::make_unique<BrfdModel>(params);
+}
+
 BrfdModel::BrfdModel(const BrfdParams& params)
     : params_(params), has_effects_(!params.effects.empty()) {
   reset();

@@ -8,6 +8,7 @@
 /// the virtual substructure, `hybridsim damper predict`, `diagnose` and the SUNDIALS
 /// monolithic reference (bristle_rate() is the right-hand side of Eq. 1).
 
+#include "damper/model/damper_model.h"
 #include "damper/model/effects.h"
 
 #include <array>
@@ -68,16 +69,9 @@ struct BrfdParams {
   ModelEffects effects;
 };
 
-/// Inputs at one instant. Drum displacement/velocity in in and in/s; actuator positions in in.
-struct DamperInput {
-  double drum_disp_in = 0.0;
-  double drum_vel_in_per_s = 0.0;
-  double actuator1_in = 0.0;   ///< x_1 (ignored by passive LuGre)
-  double actuator2_in = 0.0;   ///< x_2 (ignored by passive LuGre)
-};
-
-/// The BRFD friction model with its bristle state z (in).
-class BrfdModel {
+/// The BRFD friction model with its bristle state z (in): the DamperModel of the paper
+/// (`passive_lugre` or `semiactive`).
+class BrfdModel final : public DamperModel {
  public:
   explicit BrfdModel(const BrfdParams& params);
 
@@ -88,7 +82,7 @@ class BrfdModel {
   /// With effects (params().effects) the ODE stays piecewise linear in z (backlash dead zone,
   /// asymmetric stiffness, rest relaxation): the step chains the exact solutions of the pieces.
   /// The actuator lag and the low-passed speed of residual_static are advanced here too.
-  double step(const DamperInput& in, double dt_s);
+  double step(const DamperInput& in, double dt_s) override;
 
   /// b of Eq. (4), kip: fc_fwd_kip / fc_bwd_kip by the sign of v, or b_of_velocity if set.
   double base_kinetic_friction_kip(double v_in_per_s) const;
@@ -116,7 +110,20 @@ class BrfdModel {
   double bristle_in() const { return z_in_; }
   void set_bristle_in(double z_in) { z_in_ = z_in; }
   /// z = 0 and the effect states back to their initial values.
-  void reset();
+  void reset() override;
+
+  // DamperModel: rest positions x'_1, x'_2; one continuous state, z (bristle_rate, force_kip).
+  double actuator1_rest_in() const override { return params_.semiactive.actuator1_initial_in; }
+  double actuator2_rest_in() const override { return params_.semiactive.actuator2_initial_in; }
+  int num_states() const override { return 1; }
+  void initial_states(double* states) const override { states[0] = 0.0; }
+  void state_rate(const double* states, const DamperInput& in, double* rate) const override {
+    rate[0] = bristle_rate(states[0], in);
+  }
+  double force_for_states(const double* states, const DamperInput& in) const override {
+    return force_kip(states[0], in);
+  }
+  std::unique_ptr<DamperModel> fresh_copy() const override { return std::make_unique<BrfdModel>(params_); }
   const BrfdParams& params() const { return params_; }
 
  private:
@@ -143,6 +150,9 @@ class BrfdModel {
   double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
 };
+
+/// The damper model a BrfdParams describes (the factory every user of a config calls).
+std::unique_ptr<DamperModel> make_damper_model(const BrfdParams& params);
 
 /// Name of a DamperKind as used in configs ("passive_lugre", "semiactive").
 std::string to_string(DamperKind kind);

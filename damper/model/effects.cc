@@ -81,7 +81,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
 std::string effects_to_yaml(const ModelEffects& e) {
   if (e.empty()) return "";
   std::ostringstream o;
-  o << std::setprecision(8);
+  o << std::setprecision(17);
   o << "effects:\n";
   for (const EffectSpec& spec : effect_library()) {
     if (!spec.present(e)) continue;

@@ -178,7 +178,7 @@ inline PhysicalSettings load_physical_settings(const std::string& path) {
 /// The settings as YAML (the contents of a `rig:` block, unindented).
 inline std::string physical_settings_to_yaml(const PhysicalSettings& p) {
   std::ostringstream o;
-  o << std::setprecision(12) << std::boolalpha;
+  o << std::setprecision(17) << std::boolalpha;
   o << "launch: " << p.rig.launch << "\n"
     << "config: \"" << (p.rig.config.empty() ? "" : std::filesystem::absolute(p.rig.config).string()) << "\"\n"
     << "key_file: \"" << (p.rig.key_file.empty() ? "" : std::filesystem::absolute(p.rig.key_file).string()) << "\"\n"

@@ -125,7 +125,7 @@ RigConfig load_rig_config(const std::string& path) {
 
 std::string rig_config_to_yaml(const RigConfig& c) {
   std::ostringstream o;
-  o << std::setprecision(12) << std::boolalpha;
+  o << std::setprecision(17) << std::boolalpha;
   o << "# Effective brfd-rig config. source: " << c.source_file << "\n"
     << "rate_hz: " << c.rate_hz << "\n"
     << "damper_model: \"" << std::filesystem::absolute(c.damper_model_file).string() << "\"\n"

@@ -52,7 +52,7 @@ void SubstructureNode::on_run_control(const hybrid_lcm::run_control_t& msg, mess
                   << msg.num_dampers << " and dt_s " << msg.dt_s << ": out of range, ignored\n";
         return;
       }
-      models_.assign(static_cast<std::size_t>(msg.num_dampers), BrfdModel(o_.model));
+      bank_ = DamperBank(*make_damper_model(o_.model), msg.num_dampers);
       dt_s_ = msg.dt_s;
       endpoint_.prepare_reply(msg.num_dampers);
       started_ = true;
@@ -70,12 +70,12 @@ void SubstructureNode::on_run_control(const hybrid_lcm::run_control_t& msg, mess
 void SubstructureNode::on_drift(hybrid_lcm::drift_command_t& cmd, messages::TimePoint) {
   if (!started_) return;
   if (endpoint_.answer_repeat(cmd.step)) return;  // a repeated command: answer again, do not step twice
-  if (cmd.num_dampers != static_cast<int>(models_.size())) {
+  if (cmd.num_dampers != bank_.size()) {
     fault(cmd.step, "drift command on '" + o_.channels.drift_command() + "' has " + std::to_string(cmd.num_dampers) +
-                        " dampers, the run started with " + std::to_string(models_.size()));
+                        " dampers, the run started with " + std::to_string(bank_.size()));
     return;
   }
-  for (std::size_t k = 0; k < models_.size(); ++k) {
+  for (std::size_t k = 0; k < static_cast<std::size_t>(bank_.size()); ++k) {
     const double d = cmd.drift_in[k], v = cmd.drift_velocity_in_per_s[k];
     if (!std::isfinite(d) || !std::isfinite(v) || std::abs(d) > o_.max_drum_displacement_in ||
         std::abs(v) > o_.max_drum_velocity_in_per_s) {
@@ -87,14 +87,10 @@ void SubstructureNode::on_drift(hybrid_lcm::drift_command_t& cmd, messages::Time
     }
   }
   hybrid_lcm::force_feedback_t& reply = endpoint_.reply();
-  for (std::size_t k = 0; k < models_.size(); ++k) {
-    DamperInput in;
-    in.drum_disp_in = cmd.drift_in[k];
-    in.drum_vel_in_per_s = cmd.drift_velocity_in_per_s[k];
-    in.actuator1_in = o_.model.semiactive.actuator1_initial_in;
-    in.actuator2_in = o_.model.semiactive.actuator2_initial_in;
-    reply.force_kip[k] = o_.echo ? 0.0 : models_[k].step(in, dt_s_);
-    reply.measured_drift_in[k] = cmd.drift_in[k];
+  for (int k = 0; k < bank_.size(); ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    reply.force_kip[kk] = o_.echo ? 0.0 : bank_.step(k, cmd.drift_in[kk], cmd.drift_velocity_in_per_s[kk], dt_s_);
+    reply.measured_drift_in[kk] = cmd.drift_in[kk];
   }
   ++steps_;
   endpoint_.reply_ok(cmd.step);

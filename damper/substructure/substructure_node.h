@@ -48,7 +48,7 @@ class SubstructureNode : public messages::LoopActor, private messages::Substruct
 
   SubstructureNodeOptions o_;
   messages::SubstructureEndpoint endpoint_;
-  std::vector<BrfdModel> models_;
+  DamperBank bank_;  ///< the run's dampers (damper/model/damper_model.h)
   double dt_s_ = 0.0;
   bool started_ = false;
   long steps_ = 0;

@@ -97,30 +97,17 @@ int batch_worker_command(const BatchWorkerOptions& w) {
       std::error_code ec;
       info["netns"] = fs::read_symlink("/proc/self/ns/net", ec).string();
       try {
-        if (in_process) {
-          InProcessSubstructure sub(config.damper_model);
-          summary = run_hybrid(config, sub, run_id);
-        } else {
-          LcmLinkSettings link;
-          link.url = config.transport.url;
-          link.lab_network = config.transport.lab_network;
-          link.channels.prefix = config.transport.channel_prefix;
-          link.step_timeout_s = config.transport.step_timeout_s;
-          link.start_timeout_s = config.transport.start_timeout_s;
-          if (config.transport.write_lcm_log) link.log_path = (partial / "run.lcmlog").string();
-          LcmSubstructure sub(link);
-          ChildProcess child;
-          try {
-            child = spawn_substructure(config, partial.string(), run_id, (partial / "substructure.log").string());
-          } catch (const std::exception&) {
-            infra_failure = true;
-            throw;
-          }
-          summary = run_hybrid(config, sub, run_id);
-          const int code = child.wait_or_kill(2.0);
-          if (code != 0 && summary.status == "ok")
-            std::cerr << "hybridsim batch worker: warning: substructure exited with code " << code << "\n";
+        // One factory for every transport (server/run/substructure_session.h).
+        std::unique_ptr<SubstructureSession> session;
+        try {
+          session = std::make_unique<SubstructureSession>(config, partial.string(), run_id);
+        } catch (const SubstructureSetupError&) {
+          infra_failure = true;
+          throw;
         }
+        summary = run_hybrid(config, session->substructure(), run_id);
+        for (const std::string& note : session->finish(summary.status == "ok"))
+          std::cerr << "hybridsim batch worker: " << note << "\n";
       } catch (const std::exception& e) {
         summary.status = "failed";
         summary.error = e.what();

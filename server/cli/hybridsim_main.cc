@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
   run->add_option("--config", config_path, "run config YAML (e.g. configs/three-story.yaml)")->required();
   run->add_option("--out", out_dir, "results folder (overrides output.dir)");
   run->add_flag("--quiet", quiet, "print only the results folder");
+  double run_duration_s = 0.0;
+  run->add_option("--duration", run_duration_s, "simulate only the first S seconds of the record (overrides record.duration_s)")
+      ->check(CLI::PositiveNumber);
 
   server::BenchOptions bench_options;
   CLI::App* bench = app.add_subcommand("bench", "print LCM and hybrid-step round trips and in-process speed");
@@ -41,7 +44,7 @@ int main(int argc, char** argv) {
   add_diagnose_commands(app);
 
   int code = 0;
-  run->callback([&] { code = server::run_command(config_path, out_dir, quiet); });
+  run->callback([&] { code = server::run_command(config_path, out_dir, quiet, run_duration_s); });
   bench->callback([&] { code = server::bench_command(bench_options); });
   try {
     app.parse(argc, argv);

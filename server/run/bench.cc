@@ -1,6 +1,7 @@
 #include "server/run/bench.h"
 
 #include "server/run/hybrid_run.h"
+#include "server/run/substructure_session.h"
 #include "common/process.h"
 #include "damper/model/band_brake_model.h"
 #include "damper/model/brfd_model.h"
@@ -75,8 +76,9 @@ InProcessSpeed inprocess_speed(const std::string& config_path, int repeats) {
       config.output.dir = temp_dir(config.name + "-inprocess-" + format);
       config.output.every_n_steps = 1;
       config.output.format = format;
-      InProcessSubstructure sub(config.damper_model);
-      const RunSummary s = run_hybrid(config, sub, "bench-inprocess");
+      config.transport.kind = "in_process";
+      SubstructureSession session(config, config.output.dir, "bench-inprocess");
+      const RunSummary s = run_hybrid(config, session.substructure(), "bench-inprocess");
       if (s.status != "ok") throw std::runtime_error("in-process bench run failed: " + s.error);
       speed.steps = s.steps;
       speed.loop_x = std::max(speed.loop_x, s.sim_time_s / s.loop_wall_s);
@@ -129,12 +131,11 @@ int bench_command(const BenchOptions& options) {
       c.output.dir = temp_dir("three-story-lcm");
       c.transport.write_lcm_log = false;
       c.transport.channel_prefix = "BENCH_RUN_";
-      link.channels.prefix = c.transport.channel_prefix;
-      ChildProcess child = spawn_substructure(c, c.output.dir, "bench-run", "");
-      LcmSubstructure sub(link);
-      sub.keep_round_trips(true);
-      const RunSummary s = run_hybrid(c, sub, "bench-run");
-      child.wait_or_kill(2.0);
+      SubstructureSession session(c, c.output.dir, "bench-run");
+      session.lcm()->keep_round_trips(true);
+      const RunSummary s = run_hybrid(c, session.substructure(), "bench-run");
+      session.finish(s.status == "ok");
+      LcmSubstructure& sub = *session.lcm();
       if (s.status != "ok") throw std::runtime_error("LCM bench run failed: " + s.error);
       step_us = sub.round_trip_us();
       std::printf("3-story over LCM: %ld steps, %.2f s simulated in %.2f s wall (%.1fx real time)\n",

@@ -2,10 +2,10 @@
 
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
-#include "damper/physical/realtime.h"
 #include "damper/physical/run_key.h"
 #include "server/run/hdf5_time_history.h"
 #include "server/run/time_history_writer.h"
+#include "server/run/substructure_session.h"
 #include "common/process.h"
 #include "structure/cr_integrator.h"
 #include "structure/energy.h"
@@ -103,7 +103,8 @@ void report_physical(const fs::path& out, const std::string& summary_path, bool 
 
 }  // namespace
 
-RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id) {
+RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id,
+                      structure::ResponseHistory* response) {
   using structure::kGravity_in_per_s2;
   const structure::ShearBuilding building(config.building);
   const structure::GroundMotion record = structure::read_ground_motion(config.record.path, config.record.scale);
@@ -153,6 +154,20 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     history.end_row();
   };
 
+  auto record_history = [&](double t) {
+    response->time_s.push_back(t);
+    response->floor_disp_in.push_back(cr.displacement_in());
+    response->floor_vel_in_per_s.push_back(cr.velocity_in_per_s());
+    response->damper_force_kip.push_back(force);
+  };
+  if (response) {
+    *response = structure::ResponseHistory{};
+    response->time_s.reserve(static_cast<std::size_t>(num_steps) + 1);
+    response->floor_disp_in.reserve(static_cast<std::size_t>(num_steps) + 1);
+    response->floor_vel_in_per_s.reserve(static_cast<std::size_t>(num_steps) + 1);
+    response->damper_force_kip.reserve(static_cast<std::size_t>(num_steps) + 1);
+  }
+
   const auto wall_start = std::chrono::steady_clock::now();
   try {
     substructure.start(run_id, nd, dt);
@@ -162,6 +177,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     drift.setZero();
     abs_accel_g = (cr.acceleration_in_per_s2().array() + ag) / kGravity_in_per_s2;
     write_row(0.0, ag);
+    if (response) record_history(0.0);
     for (long i = 0; i < num_steps; ++i) {
       const double t_next = (i + 1) * dt;
       cr.predict();  // x₊, v₊ explicit: known before the damper force is needed
@@ -184,6 +200,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       s.peak_floor_accel_g = s.peak_floor_accel_g.cwiseMax(abs_accel_g.cwiseAbs());
       s.peak_force_kip = s.peak_force_kip.cwiseMax(force.cwiseAbs());
       if ((i + 1) % config.output.every_n_steps == 0) write_row(t_next, ag);
+      if (response) record_history(t_next);
       s.steps = i + 1;
       s.sim_time_s = t_next;
       if ((i + 1) % config.output.flush_every_steps == 0) history.hand_over();
@@ -267,45 +284,13 @@ std::string format_summary(const RunSummary& s) {
   return o.str();
 }
 
-ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
-                                const std::string& run_id, const std::string& log_path) {
-  const std::string model_path = (fs::path(out_dir) / "damper-model.yaml").string();
-  {
-    std::ofstream model(model_path);
-    model << "# Damper model handed to the substructure. Units: kip, in, s.\n"
-          << damper::brfd_params_to_yaml(config.damper_model);
-  }
-  std::vector<std::string> args{"--model-config", model_path, "--url", config.transport.url,
-                                "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id};
-  if (config.transport.lab_network) args.push_back("--lab-network");
-  if (config.damper.mode == "physical") {
-    const std::string physical_path = (fs::path(out_dir) / "physical.yaml").string();
-    std::ofstream(physical_path) << "# rig block of the run config, for brfd-substructure --mode physical\n"
-                                 << damper::physical::physical_settings_to_yaml(config.rig);
-    args.insert(args.end(), {"--mode", "physical", "--physical-config", physical_path, "--key-file",
-                             physical_key_path(config, out_dir), "--results-dir", out_dir});
-  }
-  return ChildProcess(sibling_executable(config.damper.executable), args, log_path);
-}
-
-std::string physical_key_path(const RunConfig& config, const std::string& out_dir) {
-  return config.rig.rig.key_file.empty() ? (fs::path(out_dir) / "run.key").string() : config.rig.rig.key_file;
-}
-
-ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
-                       const std::string& log_path) {
-  std::vector<std::string> args{"--config", config.rig.rig.config, "--url", config.transport.url,
-                                "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id,
-                                "--key-file", physical_key_path(config, out_dir), "--log-dir", out_dir};
-  if (config.transport.lab_network) args.push_back("--lab-network");
-  return ChildProcess(sibling_executable(config.rig.rig.executable), args, log_path);
-}
-
-int run_command(const std::string& config_path, const std::string& output_dir_override, bool quiet) {
+int run_command(const std::string& config_path, const std::string& output_dir_override, bool quiet,
+                double duration_override_s) {
   RunConfig config;
   try {
     config = load_run_config(config_path);
     if (!output_dir_override.empty()) config.output.dir = output_dir_override;
+    if (duration_override_s > 0.0) config.record.duration_s = duration_override_s;
     structure::read_ground_motion(config.record.path, config.record.scale);  // fail early on a bad record
     structure::ShearBuilding check(config.building);
   } catch (const std::exception& e) {
@@ -320,7 +305,7 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
   }
   const std::string run_id = make_run_id(config.name);
   const bool physical = config.damper.mode == "physical";
-  const bool local_rig = physical && config.rig.rig.launch == "local" && config.transport.kind == "lcm";
+  const bool local_rig = launches_local_rig(config);
   if (local_rig) {
     // Check the emulator's config before anything runs, and give the run its own HMAC key.
     const std::string check_log = (out / "rig.log").string();
@@ -345,42 +330,9 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
 
   RunSummary summary;
   try {
-    if (config.transport.kind == "in_process") {
-      InProcessSubstructure sub(config.damper_model);
-      summary = run_hybrid(config, sub, run_id);
-    } else {
-      if (config.transport.private_netns && !messages::in_private_network_namespace()) {
-        messages::enter_private_network_namespace();
-      }
-      LcmLinkSettings link;
-      link.url = config.transport.url;
-      link.lab_network = config.transport.lab_network;
-      link.channels.prefix = config.transport.channel_prefix;
-      link.step_timeout_s = config.transport.step_timeout_s;
-      link.start_timeout_s = config.transport.start_timeout_s;
-      if (config.transport.write_lcm_log) link.log_path = (out / "run.lcmlog").string();
-      // Physical: the step loop is part of the real-time loop with the rig (below the
-      // substructure's priority); before LCM starts its receive thread, which inherits it.
-      if (physical) damper::physical::enter_realtime(std::max(0, config.rig.realtime_priority - 10), "hybridsim");
-      LcmSubstructure sub(link);
-      ChildProcess rig, child;
-      if (local_rig) rig = spawn_rig(config, out.string(), run_id, (out / "rig.log").string());
-      if (config.damper.launch == "spawn") {
-        child = spawn_substructure(config, out.string(), run_id, (out / "substructure.log").string());
-      }
-      summary = run_hybrid(config, sub, run_id);
-      if (config.damper.launch == "spawn") {
-        // Physical: the substructure first ramps the rig out to its safe state.
-        const int code = child.wait_or_kill(physical ? 10.0 : 2.0);
-        if (code != 0 && summary.status == "ok") {
-          std::cerr << "hybridsim run: warning: substructure exited with code " << code << "\n";
-        }
-      }
-      if (local_rig) {
-        const int code = rig.wait_or_kill(5.0);
-        if (code != 0) std::cerr << "hybridsim run: note: brfd-rig exited with code " << code << " (see rig.log)\n";
-      }
-    }
+    SubstructureSession session(config, out.string(), run_id);
+    summary = run_hybrid(config, session.substructure(), run_id);
+    for (const std::string& note : session.finish(summary.status == "ok")) std::cerr << "hybridsim run: " << note << "\n";
   } catch (const std::exception& e) {
     summary.status = "failed";
     summary.error = e.what();

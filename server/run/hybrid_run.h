@@ -10,11 +10,13 @@
 ///   summary.json         peaks, energies, status and error text
 ///   effective-config.yaml  every value used (re-runnable with hybridsim run --config)
 ///   damper-model.yaml    the damper model handed to the substructure process
+///                        (server/run/substructure_session.h sets up the substructure)
 ///   run.lcmlog           all LCM traffic of the run (replay with lcm-logplayer)
 
 #include "common/process.h"
 #include "server/run/run_config.h"
 #include "server/run/substructure.h"
+#include "structure/response_history.h"
 
 #include <Eigen/Dense>
 
@@ -47,29 +49,17 @@ struct RunSummary {
 /// Runs the step loop against `substructure` and writes results to config.output.dir.
 /// Never throws for a substructure failure: the summary says "failed" with the reason, and
 /// the time history up to the last completed step is on disk.
-RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id);
+/// If `response` is given, every committed step (t, x, v, damper force) is also appended to
+/// it: this is how validation/ judges the real loop against the CVODE reference.
+RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id,
+                      structure::ResponseHistory* response = nullptr);
 
 /// `hybridsim run`: sets up transport (private network namespace, LCM, spawned
 /// substructure process) per the config, runs, prints the summary. Returns the exit code
 /// (0 ok, 1 run failed, 2 bad input).
+/// duration_override_s > 0 replaces record.duration_s (`hybridsim run --duration`).
 int run_command(const std::string& config_path, const std::string& output_dir_override,
-                bool quiet);
-
-/// Writes `damper-model.yaml` into `out_dir` and starts the substructure process of the
-/// config on it, with the config's URL and channel prefix. Child output goes to `log_path`.
-/// Physical mode also writes `physical.yaml` (the rig block) and passes --mode physical, the
-/// key file (physical_key_path) and the results folder.
-ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
-                                const std::string& run_id, const std::string& log_path);
-
-/// Physical mode: the HMAC key file of the run's actuator commands: rig.key_file if the config
-/// gives one, else <out_dir>/run.key (written by run_command for a local rig).
-std::string physical_key_path(const RunConfig& config, const std::string& out_dir);
-
-/// Physical mode with `rig: launch: local`: starts brfd-rig (the lab-controller emulator) with
-/// the config's rig.config, URL, channel prefix, run id and key; its logs go to out_dir.
-ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
-                       const std::string& log_path);
+                bool quiet, double duration_override_s = 0.0);
 
 /// Writes summary.json.
 void write_summary_json(const RunSummary& summary, const RunConfig& config, const std::string& path);

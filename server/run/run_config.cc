@@ -97,7 +97,7 @@ RunConfig load_run_config(const std::string& path) {
 
 std::string run_config_to_yaml(const RunConfig& c) {
   std::ostringstream o;
-  o << std::setprecision(12) << std::boolalpha;
+  o << std::setprecision(17) << std::boolalpha;
   o << "# Effective config of this run (every value used). Units: kip, in, s.\n"
     << "# source: " << c.source_file << "\n"
     << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s << "\n"

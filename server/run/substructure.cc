@@ -16,25 +16,19 @@ namespace server {
 
 using Clock = std::chrono::steady_clock;
 
-InProcessSubstructure::InProcessSubstructure(const damper::BrfdParams& params) : params_(params) {}
+InProcessSubstructure::InProcessSubstructure(const damper::BrfdParams& params)
+    : prototype_(damper::make_damper_model(params)) {}
 
 void InProcessSubstructure::start(const std::string&, int num_dampers, double dt_s) {
-  models_.assign(static_cast<std::size_t>(num_dampers), damper::BrfdModel(params_));
+  bank_ = damper::DamperBank(*prototype_, num_dampers);
   dt_s_ = dt_s;
 }
 
 void InProcessSubstructure::exchange(long, double, const Eigen::VectorXd& drum_disp_in,
                                      const Eigen::VectorXd& drum_vel_in_per_s,
                                      SubstructureReply& reply) {
-  for (std::size_t k = 0; k < models_.size(); ++k) {
-    damper::DamperInput in;
-    in.drum_disp_in = drum_disp_in[k];
-    in.drum_vel_in_per_s = drum_vel_in_per_s[k];
-    in.actuator1_in = params_.semiactive.actuator1_initial_in;
-    in.actuator2_in = params_.semiactive.actuator2_initial_in;
-    reply.force_kip[k] = models_[k].step(in, dt_s_);
-    reply.measured_drum_in[k] = drum_disp_in[k];
-  }
+  bank_.step(drum_disp_in, drum_vel_in_per_s, dt_s_, reply.force_kip);
+  reply.measured_drum_in = drum_disp_in;
 }
 
 struct LcmSubstructure::Impl {

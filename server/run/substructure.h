@@ -48,8 +48,8 @@ class Substructure {
   virtual void stop(bool abort, const std::string& reason) = 0;
 };
 
-/// The BRFD model called directly, one BrfdModel per damper (actuators hold their initial
-/// positions: no semi-active controller yet).
+/// The damper models called directly: a damper::DamperBank of the config's model, one per
+/// damper (actuators at their rest positions unless a controller sets them on the bank).
 class InProcessSubstructure : public Substructure {
  public:
   explicit InProcessSubstructure(const damper::BrfdParams& params);
@@ -59,8 +59,12 @@ class InProcessSubstructure : public Substructure {
   void stop(bool, const std::string&) override {}
 
  private:
-  damper::BrfdParams params_;
-  std::vector<damper::BrfdModel> models_;
+  /// The dampers of the run (a controller sets actuator positions on it).
+  damper::DamperBank& bank() { return bank_; }
+
+ private:
+  std::unique_ptr<damper::DamperModel> prototype_;
+  damper::DamperBank bank_;
   double dt_s_ = 0.0;
 };
 

@@ -13,6 +13,8 @@ TimeHistoryWriter::TimeHistoryWriter(std::unique_ptr<TimeHistorySink> sink, std:
   if (!sink_ || columns == 0) throw std::invalid_argument("TimeHistoryWriter: no sink or no columns");
   const std::size_t blocks = static_cast<std::size_t>(std::max(1L, expected_rows)) / kRowsPerBlock + 2;
   storage_.resize(blocks);
+  queue_.reserve(blocks + 64);    // a block is in at most one of the two lists at a time
+  written_.reserve(blocks + 64);
   // Value-initialized: the pages are touched here, not by the step loop (a first-touch page
   // fault costs microseconds on a virtual machine).
   for (Block& b : storage_) b.values.reset(new double[block_values_]());
@@ -83,7 +85,7 @@ void TimeHistoryWriter::writer_loop() {
     wake_writer_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
     if (queue_.empty() && stopping_) return;
     Block* block = queue_.front();
-    queue_.pop_front();
+    queue_.erase(queue_.begin());  // a handful of entries at most: no allocation
     busy_ = true;
     lock.unlock();
     write_block(*block);

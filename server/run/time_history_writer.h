@@ -54,8 +54,8 @@ class TimeHistoryWriter {
   std::size_t block_values_ = 0;
   std::deque<Block> storage_;        // preallocated blocks (stable addresses), reused
   std::size_t next_free_ = 0;
-  std::deque<Block*> queue_;         // handed over, not yet written
-  std::vector<Block*> written_;      // written, may be reused
+  std::vector<Block*> queue_;        // handed over, not yet written (capacity reserved: no allocation per block)
+  std::vector<Block*> written_;      // written, may be reused (capacity reserved)
   mutable std::mutex mutex_;
   std::condition_variable wake_writer_, written_all_;
   bool stopping_ = false;

@@ -3,6 +3,7 @@
 #include "structure/ground_motion.h"
 #include "structure/integrator.h"
 #include "validation/monolithic_reference.h"
+#include "in_process_run.h"
 
 #include <gtest/gtest.h>
 
@@ -62,7 +63,9 @@ TEST(EnergyLedger, CrWithDamperBalancesOverElCentro) {
   const GroundMotion gm = read_ground_motion(kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2");
   for (double m : {0.2, 0.02}) {
     const ShearBuilding b(three_story(m, 150.0 * m / 0.2, true));
-    const ResponseHistory h = simulate_cr_in_process(b, gm, {lugre_damper()}, 1.0 / 1024, -1);
+    const ResponseHistory h = testing_support::run_in_process(testing_support::in_process_config(
+        three_story(m, 150.0 * m / 0.2, true), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2",
+        lugre_damper(), 1.0 / 1024, -1));
     const EnergyLedger e = ledger_of(b, gm, h);
     print(m == 0.2 ? "CR + LuGre, m 0.2, k 150, El Centro 53.7 s, trapezoidal" : "CR + LuGre, m 0.02, k 15, El Centro 53.7 s, trapezoidal", e);
     EXPECT_LT(e.balance_error(), 0.01);

@@ -1,5 +1,6 @@
 #include "validation/monolithic_reference.h"
 
+#include "in_process_run.h"
 #include "sdof_closed_form.h"
 
 #include <gtest/gtest.h>
@@ -83,7 +84,6 @@ TEST(MonolithicReference, DamperCountMustMatchPlacements) {
   ReferenceOptions opt;
   opt.duration_s = 0.1;
   EXPECT_THROW(simulate_monolithic(b, zero_motion(0.01, 0.1), {}, opt), std::invalid_argument);
-  EXPECT_THROW(simulate_cr_in_process(b, zero_motion(0.01, 0.1), {}, 1.0 / 1024, 0.1), std::invalid_argument);
   opt.output_dt_s = 0.0;
   EXPECT_THROW(simulate_monolithic(b, zero_motion(0.01, 0.1), {damper::BrfdParams{}}, opt), std::invalid_argument);
 }
@@ -135,15 +135,18 @@ struct Comparison {
   double ref_force = 0.0, cr_force = 0.0, max_rel_drift_error = 0.0;
 };
 
-// CR at Δt = 1/1024 s with BrfdModel::step() in-process vs the CVODE reference, first 20 s
-// of El Centro 1940 (RSN6, 180), 3-story building, one LuGre damper at story 1.
+// The real step loop (server::run_hybrid: CR at Δt = 1/1024 s, the damper bank in-process)
+// vs the CVODE reference, first 20 s of El Centro 1940 (RSN6, 180), 3-story building, one
+// LuGre damper at story 1.
 Comparison compare_on_el_centro(double m, double k) {
   const GroundMotion gm = read_ground_motion(kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2");
   const ShearBuilding b(three_story(m, k));
   ReferenceOptions opt;
   opt.duration_s = 20.0;
   const ResponseHistory ref = simulate_monolithic(b, gm, {lugre_damper()}, opt);
-  const ResponseHistory cr = simulate_cr_in_process(b, gm, {lugre_damper()}, 1.0 / 1024, 20.0);
+  const ResponseHistory cr = testing_support::run_in_process(testing_support::in_process_config(
+      three_story(m, k), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2", lugre_damper(), 1.0 / 1024,
+      20.0));
   EXPECT_EQ(ref.size(), cr.size());
   BuildingParams bare = three_story(m, k);
   bare.dampers.clear();

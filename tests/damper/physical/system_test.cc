@@ -15,6 +15,7 @@
 #include "messages/lcm_bus.h"
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
+#include "server/run/substructure_session.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

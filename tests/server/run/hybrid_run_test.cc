@@ -5,6 +5,7 @@
 #include "hybrid_lcm/heartbeat_t.hpp"
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
+#include "server/run/substructure_session.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -40,26 +41,44 @@ std::vector<std::vector<double>> read_csv(const std::string& path) {
   return rows;
 }
 
-server::RunSummary run_over_lcm(const RunConfig& c, const std::string& run_id) {
-  server::LcmLinkSettings link;
-  link.url = c.transport.url;
-  link.channels.prefix = c.transport.channel_prefix;
-  link.step_timeout_s = c.transport.step_timeout_s;
-  link.log_path = c.output.dir + "/run.lcmlog";
-  server::LcmSubstructure sub(link);
-  server::ChildProcess child = server::spawn_substructure(c, c.output.dir, run_id, c.output.dir + "/substructure.log");
-  server::RunSummary s = server::run_hybrid(c, sub, run_id);
-  EXPECT_EQ(child.wait_or_kill(2.0), 0) << test_support::read_text(c.output.dir + "/substructure.log");
+// Through the same factory hybridsim uses (SubstructureSession: spawned brfd-substructure,
+// LCM link of the config's transport block, LCM log).
+server::RunSummary run_over_lcm(RunConfig c, const std::string& run_id) {
+  c.transport.kind = "lcm";
+  c.transport.write_lcm_log = true;
+  server::SubstructureSession session(c, c.output.dir, run_id);
+  server::RunSummary s = server::run_hybrid(c, session.substructure(), run_id);
+  EXPECT_TRUE(session.finish(true).empty()) << test_support::read_text(c.output.dir + "/substructure.log");
   return s;
 }
 
+server::RunSummary run_in_process(RunConfig c, const std::string& run_id) {
+  c.transport.kind = "in_process";
+  server::SubstructureSession session(c, c.output.dir, run_id);
+  return server::run_hybrid(c, session.substructure(), run_id);
+}
+
+// A damper whose parameters carry all 17 significant digits: the model the LCM substructure
+// loads from damper-model.yaml must be this one to the last bit, not a rounded copy.
+damper::BrfdParams full_precision_damper(damper::BrfdParams p) {
+  p.lugre.sigma0_kip_per_in *= 1.0 + 1.234567890123e-7;
+  p.lugre.sigma1_kip_s_per_in *= 1.0 + 2.345678901234e-8;
+  p.lugre.fc_fwd_kip *= 1.0 + 3.456789012345e-9;
+  p.lugre.fc_bwd_kip *= 1.0 - 4.567890123456e-9;
+  p.lugre.fs_fwd_kip = std::nextafter(p.lugre.fs_fwd_kip, 10.0);
+  p.lugre.vs_in_per_s *= 1.0 + 5.678901234567e-10;
+  p.semiactive.actuator1_initial_in = std::nextafter(p.semiactive.actuator1_initial_in, 1.0);
+  return p;
+}
+
 TEST(HybridRun, TwoProcessRunOverLcmEqualsInProcessRun) {
-  const RunConfig in_process = three_story(6.0, test_support::fresh_temp_dir("inprocess"));
-  server::InProcessSubstructure local(in_process.damper_model);
-  const server::RunSummary a = server::run_hybrid(in_process, local, "local");
+  RunConfig in_process = three_story(6.0, test_support::fresh_temp_dir("inprocess"));
+  in_process.damper_model = full_precision_damper(in_process.damper_model);
+  const server::RunSummary a = run_in_process(in_process, "local");
   ASSERT_EQ(a.status, "ok") << a.error;
 
-  const RunConfig remote = three_story(6.0, test_support::fresh_temp_dir("lcm"));
+  RunConfig remote = three_story(6.0, test_support::fresh_temp_dir("lcm"));
+  remote.damper_model = full_precision_damper(remote.damper_model);
   const server::RunSummary b = run_over_lcm(remote, "equality-run");
   ASSERT_EQ(b.status, "ok") << b.error;
 
@@ -74,14 +93,13 @@ TEST(HybridRun, TwoProcessRunOverLcmEqualsInProcessRun) {
     max_force = std::max(max_force, std::abs(ra[i].back()));
   }
   std::printf("max |in-process - LCM| over %zu rows: %.3g; peak damper force %.3f kip\n", ra.size(), max_diff, max_force);
-  EXPECT_LE(max_diff, 1e-9);
+  EXPECT_LE(max_diff, 1e-12);
   EXPECT_GT(max_force, 0.5);  // the damper really acted: the comparison is not of zeros
 }
 
 TEST(HybridRun, EnergyBalanceClosesAtTheEndOfTheRecord) {
   const RunConfig c = three_story(-1.0, test_support::fresh_temp_dir("energy"));  // whole record, 53.7 s
-  server::InProcessSubstructure local(c.damper_model);
-  const server::RunSummary s = server::run_hybrid(c, local, "energy");
+  const server::RunSummary s = run_in_process(c, "energy");
   ASSERT_EQ(s.status, "ok") << s.error;
   const double stored_and_dissipated = s.kinetic_energy_kip_in + s.strain_energy_kip_in +
                                        s.inherent_damping_energy_kip_in + s.damper_energy_kip_in.sum();
