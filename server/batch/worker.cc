@@ -7,6 +7,7 @@
 #include "server/batch/batch_files.h"
 #include "server/batch/driver.h"
 #include "server/run/hybrid_run.h"
+#include "server/run/substructure_session.h"
 #include "server/run/run_config.h"
 #include "structure/ground_motion.h"
 
