@@ -5,11 +5,13 @@
 //  - damper model configs (a `lugre:` block): load and step through a 1 in, 0.5 Hz cycle; the
 //    force stays finite and within the static friction bound plus the viscous terms;
 //  - rig emulator configs (a `rate_hz:` key): `brfd-rig --check-config` exits 0;
+//  - IDA configs (an `ida:` block): the strict IDA loader (which loads every case config);
 //  - record lists (*.txt): every record they name is read; scripts (*.sbatch): `bash -n` passes.
 #include "damper/model/brfd_config.h"
 #include "damper/model/brfd_model.h"
 #include "run_process.h"
 #include "server/batch/batch.h"
+#include "server/ida/ida_config.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -86,6 +88,9 @@ TEST_P(ShippedConfig, WorksAsShipped) {
     // plus σ1 ż and σ2 v at the peak speed π in/s.
     EXPECT_LT(peak, 3.0 * fs + (p.lugre.sigma1_kip_s_per_in + p.lugre.sigma2_kip_s_per_in) * w * 10) << file;
     EXPECT_GT(peak, 0.1 * std::min(p.lugre.fc_fwd_kip, p.lugre.fc_bwd_kip)) << file;
+  } else if (root["ida"]) {
+    // IDA configs: the strict loader accepts it and every case config it names loads.
+    EXPECT_NO_THROW(server::ida::load_ida_config(file.string())) << file;
   } else if (root["rate_hz"]) {
     const auto r = test_support::run_process({test_paths::bin_dir() + "/brfd-rig", "--config", file.string(),
                                               "--check-config"});
