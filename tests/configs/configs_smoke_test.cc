@@ -2,8 +2,9 @@
 // (a new config is covered without editing this test):
 //  - run configs (a `building:` block): `hybridsim run --config F --duration 0.5` exits 0 with
 //    status ok (LCM, physical with the rig emulator, ... as the file says);
-//  - damper model configs (a `lugre:` block): load and step through a 1 in, 0.5 Hz cycle; the
-//    force stays finite and within the static friction bound plus the viscous terms;
+//  - damper model configs (a `model:` key): built by the factory, stepped through a 1 in,
+//    0.5 Hz cycle; the force stays finite and of BRFD size;
+//  - `damper validate` configs (data_dir + semiactive): the data folder exists;
 //  - rig emulator configs (a `rate_hz:` key): `brfd-rig --check-config` exits 0;
 //  - IDA configs (an `ida:` block): the strict IDA loader (which loads every case config);
 //  - record lists (*.txt): every record they name is read; scripts (*.sbatch): `bash -n` passes.
@@ -68,26 +69,31 @@ TEST_P(ShippedConfig, WorksAsShipped) {
     std::ifstream(out + "/summary.json") >> summary;
     EXPECT_EQ(summary.value("status", ""), "ok") << file;
     EXPECT_GE(summary.value("steps", 0L), 500L) << file;
-  } else if (root["lugre"]) {
+  } else if (root["model"]) {
+    // A damper model config (any model kind): the factory builds it and it steps through a
+    // 1 in, 0.5 Hz cycle with a finite force of BRFD size (the device slips at 1-5 kip).
+    // TEMPORARY (remove when the band-brake model is behind make_damper_model, issue 13):
+    if (root["model"].as<std::string>() == "band_brake") GTEST_SKIP() << "band_brake not yet behind the factory";
     const damper::BrfdParams p = damper::load_brfd_params(file.string());
-    damper::BrfdModel model(p);
+    const std::unique_ptr<damper::DamperModel> model = damper::make_damper_model(p);
     const double dt = 1.0 / 1024, w = 2 * 3.14159265358979 * 0.5;
-    const double fs = std::max(p.lugre.fs_fwd_kip, p.lugre.fs_bwd_kip);
     double peak = 0.0;
     for (int i = 1; i <= 2048; ++i) {
       damper::DamperInput in;
       in.drum_disp_in = std::sin(w * i * dt);
       in.drum_vel_in_per_s = w * std::cos(w * i * dt);
-      in.actuator1_in = p.semiactive.actuator1_initial_in;
-      in.actuator2_in = p.semiactive.actuator2_initial_in;
-      const double f = model.step(in, dt);
+      in.actuator1_in = model->actuator1_rest_in();
+      in.actuator2_in = model->actuator2_rest_in();
+      const double f = model->step(in, dt);
       ASSERT_TRUE(std::isfinite(f)) << file << " step " << i;
       peak = std::max(peak, std::abs(f));
     }
-    // Bristle force <= Fs (times any pre-tension/self-energizing factor, bounded by 3 here),
-    // plus σ1 ż and σ2 v at the peak speed π in/s.
-    EXPECT_LT(peak, 3.0 * fs + (p.lugre.sigma1_kip_s_per_in + p.lugre.sigma2_kip_s_per_in) * w * 10) << file;
-    EXPECT_GT(peak, 0.1 * std::min(p.lugre.fc_fwd_kip, p.lugre.fc_bwd_kip)) << file;
+    EXPECT_GT(peak, 0.2) << file;
+    EXPECT_LT(peak, 20.0) << file;
+  } else if (root["data_dir"] && root["semiactive"]) {
+    // `damper validate` config: the data folder it names exists (where ../shared is present).
+    if (!test_paths::have_shared()) GTEST_SKIP() << "../shared absent";
+    EXPECT_TRUE(fs::exists(file.parent_path() / root["data_dir"].as<std::string>())) << file;
   } else if (root["ida"]) {
     // IDA configs: the strict loader accepts it and every case config it names loads.
     EXPECT_NO_THROW(server::ida::load_ida_config(file.string())) << file;
