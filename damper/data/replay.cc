@@ -24,6 +24,19 @@ std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& t
                                      std::size_t begin, std::size_t end,
                                      const ReplayOptions& options) {
   assert(begin < end && end <= test.size());
+  if (params.kind == DamperKind::band_brake) {
+    // The band-brake model: stretch state from the measured force at `begin` (clipped to Fc).
+    BandBrakeModel band(params.band_brake);
+    const DamperInput in0 = input_at(test, begin, params);
+    if (options.initial_bristle_from_force) {
+      const BandTensions t = band.tensions(in0);
+      band.set_stretch_in(band.stretch_for_force(std::clamp(test.force_kip[begin], -t.fc_bwd_kip, t.fc_fwd_kip)));
+    }
+    std::vector<double> f(end - begin);
+    f[0] = band.force_kip(band.stretch_in(), in0);
+    for (std::size_t i = begin + 1; i < end; ++i) f[i - begin] = band.step(input_at(test, i, params), test.dt_s);
+    return f;
+  }
   BrfdModel model(params);
   const LugreParams& g = params.lugre;
   if (options.initial_bristle_from_force) {

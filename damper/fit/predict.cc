@@ -1,5 +1,8 @@
 #include "damper/fit/predict.h"
 
+#include "damper/fit/band_brake_fit.h"
+#include "damper/fit/validate.h"
+
 #include "damper/model/brfd_config.h"
 
 #include <cmath>
@@ -87,6 +90,8 @@ PredictResult run_predict(const PredictOptions& opt) {
   if (test.has_actuator_positions && opt.initial_positions_from_test) {
     params.semiactive.actuator1_initial_in = test.actuator1_in[0];
     params.semiactive.actuator2_initial_in = test.actuator2_in[0];
+    params.band_brake.actuator1_initial_in = test.actuator1_in[0];
+    params.band_brake.actuator2_initial_in = test.actuator2_in[0];
     std::ostringstream o;
     o << std::setprecision(6) << "x'_1 = " << test.actuator1_in[0] << " in, x'_2 = "
       << test.actuator2_in[0] << " in (actuator positions at t = 0)";
@@ -122,7 +127,26 @@ PredictResult run_predict(const PredictOptions& opt) {
       io.t0_s = test.time_s.front();
       io.t1_s = r.first_actuator_motion_s ? *r.first_actuator_motion_s : t_end;
     }
-    r.identification = identify_lugre(test, params, io);
+    if (params.kind == DamperKind::band_brake) {
+      // Band brake: the same passive window, its own identification (damper/fit/band_brake_fit.h).
+      const std::size_t b = index_at_time(test, io.t0_s);
+      const std::size_t e = std::isfinite(io.t1_s) ? index_at_time(test, io.t1_s) : test.size();
+      BandBrakeFitOptions bo;
+      bo.eq4_gains_kip_per_in = paper_eq4_gains_kip_per_in();
+      const BandBrakeFitResult bf = identify_band_brake({{&test, b, e, 1.0}}, params.band_brake, bo);
+      r.identification.params = params;
+      r.identification.params.band_brake = bf.params;
+      const BandBrakeReplay rp = replay_band_brake(bf.params, test, b, e);
+      std::vector<double> full(test.size(), 0.0);
+      std::copy(rp.force_kip.begin(), rp.force_kip.end(), full.begin() + static_cast<long>(b));
+      r.identification.residual = force_error(test.force_kip, full, b, e);
+      r.identification.t0_s = test.time_s[b];
+      r.identification.t1_s = e < test.size() ? test.time_s[e] : t_end;
+      r.identification.evaluations = bf.evaluations;
+      r.identification.algorithm = bf.algorithm;
+    } else {
+      r.identification = identify_lugre(test, params, io);
+    }
     r.fitted = true;
     params = r.identification.params;
     r.fit_t0_s = r.identification.t0_s;
@@ -132,7 +156,7 @@ PredictResult run_predict(const PredictOptions& opt) {
       << (opt.fit_window_s ? "--fit-window" : (r.first_actuator_motion_s ? "before the first actuator motion" : "whole test"))
       << ")";
     log(o.str());
-    log(describe(r.identification));
+    log(params.kind == DamperKind::band_brake ? describe(params.band_brake) : describe(r.identification));
   } else {
     r.fit_t0_s = r.fit_t1_s = test.time_s.front();
     log("--no-fit: using the config's parameters as they are");
@@ -157,11 +181,20 @@ PredictResult run_predict(const PredictOptions& opt) {
            "predicted_force_kip,kinetic_friction_kip\n";
     csv << std::setprecision(8);
     BrfdModel model(params);
+    const BandBrakeModel band(params.band_brake);
+    const bool is_band = params.kind == DamperKind::band_brake;
     for (std::size_t i = 0; i < test.size(); ++i) {
       const DamperInput in = input_at(test, i, params);
+      double fc = 0.0;
+      if (is_band) {
+        const BandTensions t = band.tensions(in);
+        fc = in.drum_vel_in_per_s >= 0.0 ? t.fc_fwd_kip : t.fc_bwd_kip;
+      } else {
+        fc = model.kinetic_friction_kip(in);
+      }
       csv << test.time_s[i] << ',' << in.drum_disp_in << ',' << in.drum_vel_in_per_s << ','
           << in.actuator1_in << ',' << in.actuator2_in << ',' << test.force_kip[i] << ','
-          << r.predicted_kip[i] << ',' << model.kinetic_friction_kip(in) << '\n';
+          << r.predicted_kip[i] << ',' << fc << '\n';
     }
     csv.close();
     r.config_out_path = base + "_config.yaml";

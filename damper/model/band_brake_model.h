@@ -26,7 +26,10 @@
 /// (gain of Fc per in of actuator j: −L (E_d − 1) k_dj). With δ = 0, h = 0, κ = 0, c = 0 and
 /// fixed actuators and n = 1, (B4)-(B6) is LuGre (Eqs. 1-3) with σ0 = L k_b, σ1 = 0, Fs = Fc = Fc_d.
 
+#include "damper/model/damper_model.h"
+
 #include <array>
+#include <memory>
 #include <string>
 
 namespace damper {
@@ -52,13 +55,9 @@ struct BandBrakeParams {
   double actuator2_initial_in = 0.8559;      ///< x'_2
 };
 
-/// Inputs of one step (drum displacement in, velocity in/s, actuator positions in).
-struct BandBrakeInput {
-  double drum_disp_in = 0.0;
-  double drum_vel_in_per_s = 0.0;
-  double actuator1_in = 0.0;
-  double actuator2_in = 0.0;
-};
+/// Inputs of one step: the DamperInput of every model (drum displacement in, velocity in/s,
+/// actuator positions in).
+using BandBrakeInput = DamperInput;
 
 /// Tensions at one instant (kip).
 struct BandTensions {
@@ -67,14 +66,15 @@ struct BandTensions {
   double fc_fwd_kip = 0.0, fc_bwd_kip = 0.0;        ///< (B3)
 };
 
-/// The band-brake model with its band stretch state s (in).
-class BandBrakeModel {
+/// The band-brake model with its band stretch state s (in): a DamperModel (one continuous
+/// state, s; the same physics for the hybrid loop and the CVODE reference).
+class BandBrakeModel final : public DamperModel {
  public:
   explicit BandBrakeModel(const BandBrakeParams& params);
 
   /// Advances s over dt_s with the input held (exact solution of (B5) with S linearized at the
   /// start of each piece: slack zone, loaded zone; stable for any stiffness) and returns F (kip).
-  double step(const BandBrakeInput& in, double dt_s);
+  double step(const BandBrakeInput& in, double dt_s) override;
 
   /// (B1)-(B3) at an input.
   BandTensions tensions(const BandBrakeInput& in) const;
@@ -93,8 +93,21 @@ class BandBrakeModel {
 
   double stretch_in() const { return s_in_; }
   void set_stretch_in(double s) { s_in_ = s; }
-  void reset() { s_in_ = 0.0; }
+  void reset() override { s_in_ = 0.0; }
   const BandBrakeParams& params() const { return p_; }
+
+  // DamperModel: rest positions x'_1, x'_2; one continuous state s ((B5) and (B6)).
+  double actuator1_rest_in() const override { return p_.actuator1_initial_in; }
+  double actuator2_rest_in() const override { return p_.actuator2_initial_in; }
+  int num_states() const override { return 1; }
+  void initial_states(double* states) const override { states[0] = 0.0; }
+  void state_rate(const double* states, const DamperInput& in, double* rate) const override {
+    rate[0] = stretch_rate(states[0], in);
+  }
+  double force_for_states(const double* states, const DamperInput& in) const override {
+    return force_kip(states[0], in);
+  }
+  std::unique_ptr<DamperModel> fresh_copy() const override { return std::make_unique<BandBrakeModel>(p_); }
 
  private:
   BandBrakeParams p_;

@@ -1,14 +1,25 @@
 #include "damper/model/brfd_config.h"
 
+#include "damper/model/band_brake_config.h"
+
 #include <iomanip>
 #include <sstream>
 
 namespace damper {
 
 BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
-  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity", "effects"});
   BrfdParams p;
-  p.kind = damper_kind_from_string(s.get_choice("model", {"passive_lugre", "semiactive"}));
+  p.kind = damper_kind_from_string(
+      s.get_choice("model", {"passive_lugre", "semiactive", "paper_semiactive", "band_brake"}));
+  if (p.kind == DamperKind::band_brake) {
+    // The band-brake model (damper/model/band_brake_model.h): only its own block.
+    s.allow_only({"model", "band_brake"});
+    p.band_brake = band_brake_params_from_yaml(s.section("band_brake"));
+    p.semiactive.actuator1_initial_in = p.band_brake.actuator1_initial_in;
+    p.semiactive.actuator2_initial_in = p.band_brake.actuator2_initial_in;
+    return p;
+  }
+  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity", "effects"});
   const common::YamlSection l = s.section("lugre");
   l.allow_only({"sigma0_kip_per_in", "sigma1_kip_s_per_in", "sigma2_kip_s_per_in", "fs_fwd_kip",
                 "fs_bwd_kip", "fc_fwd_kip", "fc_bwd_kip", "vs_in_per_s"});
@@ -70,6 +81,7 @@ BrfdParams load_brfd_params(const std::string& path) {
 }
 
 std::string brfd_params_to_yaml(const BrfdParams& p) {
+  if (p.kind == DamperKind::band_brake) return band_brake_params_to_yaml(p.band_brake);
   std::ostringstream o;
   o << std::setprecision(17);
   const LugreParams& g = p.lugre;

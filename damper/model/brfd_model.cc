@@ -14,6 +14,7 @@ constexpr double kInitialSlowSpeed = 1e3;
 }  // namespace
 
 std::unique_ptr<DamperModel> make_damper_model(const BrfdParams& params) {
+  if (params.kind == DamperKind::band_brake) return std::make_unique<BandBrakeModel>(params.band_brake);
   return std::make_unique<BrfdModel>(params);
 }
 
@@ -286,14 +287,19 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
 }
 
 std::string to_string(DamperKind kind) {
-  return kind == DamperKind::passive_lugre ? "passive_lugre" : "semiactive";
+  switch (kind) {
+    case DamperKind::passive_lugre: return "passive_lugre";
+    case DamperKind::band_brake: return "band_brake";
+    default: return "semiactive";
+  }
 }
 
 DamperKind damper_kind_from_string(const std::string& name) {
   if (name == "passive_lugre") return DamperKind::passive_lugre;
-  if (name == "semiactive") return DamperKind::semiactive;
+  if (name == "semiactive" || name == "paper_semiactive") return DamperKind::semiactive;
+  if (name == "band_brake") return DamperKind::band_brake;
   throw std::invalid_argument("unknown damper model '" + name +
-                              "' (expected passive_lugre or semiactive)");
+                              "' (expected passive_lugre, semiactive, paper_semiactive or band_brake)");
 }
 
 }  // namespace damper

@@ -8,6 +8,7 @@
 /// the virtual substructure, `hybridsim damper predict`, `diagnose` and the SUNDIALS
 /// monolithic reference (bristle_rate() is the right-hand side of Eq. 1).
 
+#include "damper/model/band_brake_model.h"
 #include "damper/model/damper_model.h"
 #include "damper/model/effects.h"
 
@@ -54,7 +55,9 @@ struct KineticFrictionCurve {
   double at(double v_in_per_s) const;
 };
 
-enum class DamperKind { passive_lugre, semiactive };
+/// passive_lugre: LuGre (Eqs. 1-3); semiactive (config name also `paper_semiactive`): the paper's
+/// model, Eqs. (1)-(5); band_brake: BandBrakeModel (damper/model/band_brake_model.h).
+enum class DamperKind { passive_lugre, semiactive, band_brake };
 
 /// Everything needed to build a BrfdModel.
 struct BrfdParams {
@@ -67,6 +70,8 @@ struct BrfdParams {
   /// actuator lag, asymmetry, velocity dependence, pre-tension), all absent by default. Found
   /// by `hybridsim diagnose` (docs/diagnose.md); config key `effects:`.
   ModelEffects effects;
+  /// The band-brake model's parameters (used when kind == band_brake; the LuGre blocks are then unused).
+  BandBrakeParams band_brake;
 };
 
 /// The BRFD friction model with its bristle state z (in): the DamperModel of the paper

@@ -1,5 +1,7 @@
 #include "validation/monolithic_reference.h"
 
+#include "damper/model/brfd_config.h"
+
 #include "in_process_run.h"
 #include "sdof_closed_form.h"
 
@@ -138,14 +140,14 @@ struct Comparison {
 // The real step loop (server::run_hybrid: CR at Δt = 1/1024 s, the damper bank in-process)
 // vs the CVODE reference, first 20 s of El Centro 1940 (RSN6, 180), 3-story building, one
 // LuGre damper at story 1.
-Comparison compare_on_el_centro(double m, double k) {
+Comparison compare_on_el_centro(double m, double k, const damper::BrfdParams& damper = lugre_damper()) {
   const GroundMotion gm = read_ground_motion(kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2");
   const ShearBuilding b(three_story(m, k));
   ReferenceOptions opt;
   opt.duration_s = 20.0;
-  const ResponseHistory ref = simulate_monolithic(b, gm, {lugre_damper()}, opt);
+  const ResponseHistory ref = simulate_monolithic(b, gm, {damper}, opt);
   const ResponseHistory cr = testing_support::run_in_process(testing_support::in_process_config(
-      three_story(m, k), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2", lugre_damper(), 1.0 / 1024,
+      three_story(m, k), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2", damper, 1.0 / 1024,
       20.0));
   EXPECT_EQ(ref.size(), cr.size());
   BuildingParams bare = three_story(m, k);
@@ -186,6 +188,18 @@ TEST(MonolithicReference, CrWithStrongLugreDamperMatchesCvodeOnElCentro) {
   EXPECT_LT(c.max_rel_drift_error, 0.02);
   EXPECT_NEAR(c.cr_force, c.ref_force, 0.02 * c.ref_force);
   EXPECT_LT(c.ref_drift(0), 0.7 * c.no_damper_drift(0));
+}
+
+// The band-brake model (configs/brfd-band-brake.yaml, the default runs' virtual damper) in the
+// CVODE reference (its continuous form: band stretch s, Eq. B5) vs the step loop (its discrete
+// step), on the default run's building. Bound: 2%.
+TEST(MonolithicReference, CrWithBandBrakeDamperMatchesCvodeOnElCentro) {
+  const damper::BrfdParams band = damper::load_brfd_params(std::string(HYBRIDSIM_SOURCE_DIR) + "/configs/brfd-band-brake.yaml");
+  ASSERT_EQ(band.kind, damper::DamperKind::band_brake);
+  const Comparison c = compare_on_el_centro(0.02, 16.0, band);
+  EXPECT_LT(c.max_rel_drift_error, 0.02);
+  EXPECT_NEAR(c.cr_force, c.ref_force, 0.02 * c.ref_force);
+  EXPECT_LT(c.ref_drift(0), 0.9 * c.no_damper_drift(0));
 }
 
 // The reference itself is converged: tightening rtol/atol by 100 changes the peak drifts by
