@@ -72,8 +72,6 @@ TEST_P(ShippedConfig, WorksAsShipped) {
   } else if (root["model"]) {
     // A damper model config (any model kind): the factory builds it and it steps through a
     // 1 in, 0.5 Hz cycle with a finite force of BRFD size (the device slips at 1-5 kip).
-    // TEMPORARY (remove when the band-brake model is behind make_damper_model, issue 13):
-    if (root["model"].as<std::string>() == "band_brake") GTEST_SKIP() << "band_brake not yet behind the factory";
     const damper::BrfdParams p = damper::load_brfd_params(file.string());
     const std::unique_ptr<damper::DamperModel> model = damper::make_damper_model(p);
     const double dt = 1.0 / 1024, w = 2 * 3.14159265358979 * 0.5;
