@@ -64,7 +64,7 @@ TEST(DiagnoseCli, ShippedDiagnosedConfigRunsInAHybridRun) {
   const std::string dir = fresh_temp_dir("diagnose_cli_run");
   std::string text = read_text(test_paths::source_dir() + "/configs/three-story.yaml");
   text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
+  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
                             "model_config: " + test_paths::source_dir() + "/configs/brfd-diagnosed-semiactive.yaml");
   text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: 2.0");
   text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");

@@ -69,7 +69,7 @@ TEST(PhysicalConfigs, RigBlockIsStrict) {
   std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story-physical.yaml");
   const std::string src = test_paths::source_dir() + "/configs/";
   auto absolutize = [&](std::string t) {
-    for (const char* rel : {"../records/", "brfd-default.yaml", "rig-default.yaml"}) {
+    for (const char* rel : {"../records/", "brfd-band-brake.yaml", "rig-default.yaml"}) {
       const auto at = t.find(rel);
       if (at != std::string::npos) t.replace(at, std::string(rel).size(), src + rel);
     }

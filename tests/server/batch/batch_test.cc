@@ -53,7 +53,7 @@ std::string write_config(const std::string& dir, const std::string& record_path 
   std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
   text = std::regex_replace(text, std::regex("\\.\\./records/"), records_dir() + "/");
   if (!record_path.empty()) text = std::regex_replace(text, std::regex("  path: [^ ]*AT2"), "  path: " + record_path);
-  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
+  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
                             "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
   text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: " + std::to_string(kDuration_s));
   text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");

@@ -29,7 +29,7 @@ std::string write_config(const std::string& dir, double duration_s, const std::s
   text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
   if (!record_path.empty())
     text = std::regex_replace(text, std::regex("  path: [^ ]*AT2"), "  path: " + record_path);
-  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
+  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
                             "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
   text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: " + std::to_string(duration_s));
   text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");

@@ -34,7 +34,7 @@ std::string write_configs(const std::string& dir) {
   const std::string src = test_paths::source_dir();
   std::string run = test_support::read_text(src + "/configs/three-story.yaml");
   run = std::regex_replace(run, std::regex("\\.\\./records/"), src + "/records/");
-  run = std::regex_replace(run, std::regex("model_config: brfd-default.yaml"),
+  run = std::regex_replace(run, std::regex("model_config: brfd-band-brake.yaml"),
                            "model_config: " + src + "/configs/brfd-default.yaml");
   run = std::regex_replace(run, std::regex("duration_s: 30.0"), "duration_s: 4.0");
   run = std::regex_replace(run, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/unused");

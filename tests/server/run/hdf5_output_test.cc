@@ -30,7 +30,7 @@ struct Runs {
 std::string write_config(const std::string& dir, const std::string& format) {
   std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
   text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
+  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
                             "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
   text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: 6.0");
   text = std::regex_replace(text, std::regex("kind: lcm"), "kind: in_process");

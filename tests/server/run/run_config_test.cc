@@ -15,8 +15,8 @@ std::string three_story_text() {
   std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
   // Make relative paths absolute so the edited copy can live in a temp folder.
   text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: brfd-default.yaml"),
-                            "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
+  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
+                            "model_config: " + test_paths::source_dir() + "/configs/brfd-band-brake.yaml");
   return text;
 }
 
@@ -69,6 +69,10 @@ TEST(RunConfig, EffectiveConfigLoadsBackToTheSameRun) {
   EXPECT_EQ(b.building.story_mass_kip_s2_per_in, a.building.story_mass_kip_s2_per_in);
   EXPECT_EQ(b.damper_model.lugre.sigma0_kip_per_in, a.damper_model.lugre.sigma0_kip_per_in);
   EXPECT_EQ(b.damper_model.lugre.fc_bwd_kip, a.damper_model.lugre.fc_bwd_kip);
+  EXPECT_EQ(b.damper_model.kind, a.damper_model.kind);
+  EXPECT_EQ(b.damper_model.band_brake.wrap_angle_fwd_rad, a.damper_model.band_brake.wrap_angle_fwd_rad);
+  EXPECT_EQ(b.damper_model.band_brake.backlash_in, a.damper_model.band_brake.backlash_in);
+  EXPECT_EQ(b.damper_model.band_brake.actuator_tension_kip_per_in, a.damper_model.band_brake.actuator_tension_kip_per_in);
   EXPECT_EQ(b.record.duration_s, a.record.duration_s);
   EXPECT_EQ(b.transport.url, a.transport.url);
 }
