@@ -4,6 +4,7 @@
 /// text that reads back as the same double (labels, command lines, summaries), and fixed
 /// decimals (timings, percentages).
 
+#include <ostream>
 #include <string>
 
 namespace common {
@@ -14,5 +15,10 @@ std::string format_shortest(double v);
 
 /// `v` with `digits` digits after the decimal point (iostream std::fixed).
 std::string format_fixed(double v, int digits);
+
+/// Makes `out` print every double as format_shortest() does (the shortest text that reads
+/// back as the same double). The config writers use it, so that what they write, the strict
+/// loaders read back to the last bit, and 0.02 stays "0.02" (not 0.020000000000000000).
+void use_shortest_round_trip(std::ostream& out);
 
 }  // namespace common

@@ -1,5 +1,6 @@
 #include "damper/fit/predict.h"
 
+#include "common/gnuplot.h"
 #include "damper/fit/band_brake_fit.h"
 #include "damper/fit/validate.h"
 
@@ -35,11 +36,6 @@ std::string metrics_line(const ErrorMetrics& m) {
 
 namespace {
 
-std::string gp_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += (c == '\'') ? std::string("''") : std::string(1, c);
-  return o + "'";
-}
 
 }  // namespace
 
@@ -50,31 +46,28 @@ std::string plot_prediction(const std::string& csv_path, const std::string& png_
     std::ofstream gp(gp_path);
     if (!gp) return "cannot write gnuplot script " + gp_path;
     gp << "set terminal pngcairo noenhanced size 1500,1100 font ',10'\n"
-       << "set output " << gp_quote(png_path) << "\n"
+       << "set output " << common::gnuplot_quote(png_path) << "\n"
        << "set datafile separator ','\n"
        << "set key autotitle columnhead\n"
        << "set grid\n"
-       << "set multiplot layout " << (has_act ? 3 : 2) << ",1 title " << gp_quote(title) << "\n"
+       << "set multiplot layout " << (has_act ? 3 : 2) << ",1 title " << common::gnuplot_quote(title) << "\n"
        << "set object 1 rect from " << t0 << ", graph 0 to " << t1
        << ", graph 1 fc rgb '#e8f0ff' fs solid 1.0 behind\n"
        << "set label 1 'fit window (passive)' at " << t0 << ", graph 0.95 offset 1,0\n"
        << "set xlabel 'time (s)'\nset ylabel 'damper force (kip)'\n"
-       << "plot " << gp_quote(csv_path) << " u 1:6 w l lw 1.5 lc rgb '#000000' t 'measured', "
+       << "plot " << common::gnuplot_quote(csv_path) << " u 1:6 w l lw 1.5 lc rgb '#000000' t 'measured', "
        << "'' u 1:7 w l lw 1.5 lc rgb '#d62728' t 'predicted'\n"
        << "unset object 1\nunset label 1\n";
     if (has_act) {
       gp << "set ylabel 'actuator position (in)'\n"
-         << "plot " << gp_quote(csv_path) << " u 1:4 w l t 'x_1 (actuator 1)', '' u 1:5 w l t 'x_2 (actuator 2)'\n";
+         << "plot " << common::gnuplot_quote(csv_path) << " u 1:4 w l t 'x_1 (actuator 1)', '' u 1:5 w l t 'x_2 (actuator 2)'\n";
     }
     gp << "set xlabel 'drum displacement (in)'\nset ylabel 'damper force (kip)'\n"
-       << "plot " << gp_quote(csv_path) << " u 2:6 w l lw 1 lc rgb '#000000' t 'measured', "
+       << "plot " << common::gnuplot_quote(csv_path) << " u 2:6 w l lw 1 lc rgb '#000000' t 'measured', "
        << "'' u 2:7 w l lw 1 lc rgb '#d62728' t 'predicted'\n"
        << "unset multiplot\n";
   }
-  const std::string cmd = "gnuplot " + gp_quote(gp_path) + " > /dev/null 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit status " + std::to_string(rc) + ") on " + gp_path;
-  return "";
+  return common::run_gnuplot(gp_path);
 }
 
 PredictResult run_predict(const PredictOptions& opt) {

@@ -1,4 +1,5 @@
 #include "damper/model/brfd_config.h"
+#include "common/number_format.h"
 
 #include "damper/model/band_brake_config.h"
 
@@ -83,7 +84,7 @@ BrfdParams load_brfd_params(const std::string& path) {
 std::string brfd_params_to_yaml(const BrfdParams& p) {
   if (p.kind == DamperKind::band_brake) return band_brake_params_to_yaml(p.band_brake);
   std::ostringstream o;
-  o << std::setprecision(17);
+  common::use_shortest_round_trip(o);
   const LugreParams& g = p.lugre;
   o << "model: " << to_string(p.kind) << "\n"
     << "lugre:\n"

@@ -1,4 +1,5 @@
 #include "damper/model/effects.h"
+#include "common/number_format.h"
 
 #include "common/strict_yaml.h"
 
@@ -81,7 +82,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
 std::string effects_to_yaml(const ModelEffects& e) {
   if (e.empty()) return "";
   std::ostringstream o;
-  o << std::setprecision(17);
+  common::use_shortest_round_trip(o);
   o << "effects:\n";
   for (const EffectSpec& spec : effect_library()) {
     if (!spec.present(e)) continue;

@@ -11,6 +11,7 @@
 /// Units: in, s, lb (electric actuator load cells), kip.
 
 #include "common/strict_yaml.h"
+#include "common/number_format.h"
 
 #include <cmath>
 #include <filesystem>
@@ -178,7 +179,8 @@ inline PhysicalSettings load_physical_settings(const std::string& path) {
 /// The settings as YAML (the contents of a `rig:` block, unindented).
 inline std::string physical_settings_to_yaml(const PhysicalSettings& p) {
   std::ostringstream o;
-  o << std::setprecision(17) << std::boolalpha;
+  common::use_shortest_round_trip(o);
+  o << std::boolalpha;
   o << "launch: " << p.rig.launch << "\n"
     << "config: \"" << (p.rig.config.empty() ? "" : std::filesystem::absolute(p.rig.config).string()) << "\"\n"
     << "key_file: \"" << (p.rig.key_file.empty() ? "" : std::filesystem::absolute(p.rig.key_file).string()) << "\"\n"

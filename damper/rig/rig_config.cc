@@ -1,4 +1,5 @@
 #include "damper/rig/rig_config.h"
+#include "common/number_format.h"
 
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
@@ -125,7 +126,8 @@ RigConfig load_rig_config(const std::string& path) {
 
 std::string rig_config_to_yaml(const RigConfig& c) {
   std::ostringstream o;
-  o << std::setprecision(17) << std::boolalpha;
+  common::use_shortest_round_trip(o);
+  o << std::boolalpha;
   o << "# Effective brfd-rig config. source: " << c.source_file << "\n"
     << "rate_hz: " << c.rate_hz << "\n"
     << "damper_model: \"" << std::filesystem::absolute(c.damper_model_file).string() << "\"\n"

@@ -1,4 +1,5 @@
 #include "server/run/run_config.h"
+#include "common/number_format.h"
 
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
@@ -97,7 +98,8 @@ RunConfig load_run_config(const std::string& path) {
 
 std::string run_config_to_yaml(const RunConfig& c) {
   std::ostringstream o;
-  o << std::setprecision(17) << std::boolalpha;
+  common::use_shortest_round_trip(o);
+  o << std::boolalpha;
   o << "# Effective config of this run (every value used). Units: kip, in, s.\n"
     << "# source: " << c.source_file << "\n"
     << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s << "\n"
