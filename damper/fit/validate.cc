@@ -1,5 +1,7 @@
 #include "damper/fit/validate.h"
 
+#include "common/gnuplot.h"
+
 #include "common/strict_yaml.h"
 #include "damper/fit/identification.h"
 #include "damper/fit/predict.h"
@@ -85,11 +87,6 @@ ValidationConfig load_validation_config(const std::string& path) {
 
 namespace {
 
-std::string quote(const std::string& s) {
-  std::string o = "'";
-  for (char ch : s) o += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return o + "'";
-}
 
 struct Prediction {
   std::vector<double> lugre_kip;
@@ -154,25 +151,25 @@ std::string write_figure(const std::string& dir, const BrfdTest& test, const Pre
   const std::string gp = (fs::path(dir) / (test.name() + "_validate.gp")).string();
   {
     std::ofstream g(gp);
-    g << "set terminal pngcairo noenhanced size 1500,1300 font ',10'\nset output " << quote(png) << "\n"
-      << "set datafile separator ','\nset grid\nset multiplot layout 3,1 title " << quote(test.name() + " (" + t.group + ")") << "\n";
+    g << "set terminal pngcairo noenhanced size 1500,1300 font ',10'\nset output " << common::gnuplot_quote(png) << "\n"
+      << "set datafile separator ','\nset grid\nset multiplot layout 3,1 title " << common::gnuplot_quote(test.name() + " (" + t.group + ")") << "\n";
     if (t.window)
       g << "set object 1 rect from " << test.time_s[std::min(t.window->first, test.size() - 1)] << ", graph 0 to "
         << test.time_s[std::min(t.window->second, test.size()) - 1] << ", graph 1 fc rgb '#eef3ff' fs solid 1.0 behind\n";
     g << "set xlabel 'time (s)'\nset ylabel 'damper force (kip)'\n"
-      << "plot " << quote(csv) << " u 1:3 skip 1 w l lw 1.5 lc rgb '#000000' t 'measured', '' u 1:4 skip 1 w l lc rgb '#1f77b4' t 'paper_semiactive (LuGre)', "
+      << "plot " << common::gnuplot_quote(csv) << " u 1:3 skip 1 w l lw 1.5 lc rgb '#000000' t 'measured', '' u 1:4 skip 1 w l lc rgb '#1f77b4' t 'paper_semiactive (LuGre)', "
       << "'' u 1:5 skip 1 w l lc rgb '#d62728' t 'band_brake'\nunset object 1\n"
       << "set xlabel 'drum displacement (in)'\n"
-      << "plot " << quote(csv) << " u 2:3 skip 1 w l lc rgb '#000000' t 'measured', '' u 2:4 skip 1 w l lc rgb '#1f77b4' t 'paper_semiactive (LuGre)', "
+      << "plot " << common::gnuplot_quote(csv) << " u 2:3 skip 1 w l lc rgb '#000000' t 'measured', '' u 2:4 skip 1 w l lc rgb '#1f77b4' t 'paper_semiactive (LuGre)', "
       << "'' u 2:5 skip 1 w l lc rgb '#d62728' t 'band_brake'\n"
       << "set xlabel 'time (s)'\nset ylabel 'actuator load cell (lb)'\n"
-      << "plot " << quote(csv) << " u 1:6 skip 1 w l lc rgb '#555555' t 'measured act. 1', '' u 1:7 skip 1 w l lc rgb '#999999' t 'measured act. 2', "
+      << "plot " << common::gnuplot_quote(csv) << " u 1:6 skip 1 w l lc rgb '#555555' t 'measured act. 1', '' u 1:7 skip 1 w l lc rgb '#999999' t 'measured act. 2', "
       << "'' u 1:8 skip 1 w l lc rgb '#d62728' t 'band_brake act. 1', '' u 1:9 skip 1 w l lc rgb '#ff9896' t 'band_brake act. 2'\n"
       << "unset multiplot\n";
   }
-  const int rc = std::system(("gnuplot " + quote(gp) + " > /dev/null 2>&1").c_str());
-  if (rc != 0) {
-    warning = "gnuplot failed (exit status " + std::to_string(rc) + ") on " + gp + "; the CSV is written";
+  const std::string gnuplot_error = common::run_gnuplot(gp);
+  if (!gnuplot_error.empty()) {
+    warning = gnuplot_error + "; the CSV is written";
     return "";
   }
   return png;
