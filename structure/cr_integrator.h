@@ -24,6 +24,8 @@
 #include "structure/integrator.h"
 #include "structure/shear_building.h"
 
+#include "structure/sparse_rows.h"
+
 #include <Eigen/Dense>
 
 namespace structure {
@@ -77,7 +79,9 @@ class CrIntegrator final : public Integrator {
   Eigen::MatrixXd alpha_;
   Eigen::LLT<Eigen::MatrixXd> mass_llt_;
   Eigen::VectorXd mass_iota_;  // M·ι
-  Eigen::MatrixXd minv_damping_, minv_stiffness_, minv_gamma_;  // M⁻¹C, M⁻¹K, M⁻¹Γ
+  // M⁻¹C, M⁻¹K, M⁻¹Γ, stored sparse: a shear building's M is diagonal and K, C are
+  // tridiagonal, so these products skip the (exact) zeros of the dense matrices.
+  SparseRows minv_damping_, minv_stiffness_, minv_gamma_;
   Eigen::VectorXd x_, v_, a_, x_next_, v_next_, alpha_a_, rhs_;
   long step_ = 0;
   bool initialized_ = false;

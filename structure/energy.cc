@@ -22,6 +22,10 @@ EnergyLedger::EnergyLedger(const ShearBuilding& building, EnergyDefinition defin
     : building_(building),
       definition_(definition),
       mass_iota_(building.mass() * building.influence()),
+      mass_(sparse_rows(building.mass())),
+      stiffness_(sparse_rows(building.stiffness())),
+      damping_matrix_(sparse_rows(building.damping())),
+      gamma_t_(sparse_rows(building.damper_gamma().transpose())),
       work_(building.num_stories()),
       work2_(building.num_stories()),
       drum_vel_(building.num_dampers()),
@@ -35,12 +39,12 @@ EnergyLedger::EnergyLedger(const ShearBuilding& building, EnergyDefinition defin
       damper_each_(Eigen::VectorXd::Zero(building.num_dampers())) {}
 
 double EnergyLedger::kinetic_kip_in() const {
-  work_.noalias() = building_.mass() * last_v_;
+  work_.noalias() = mass_ * last_v_;
   return 0.5 * last_v_.dot(work_);
 }
 
 double EnergyLedger::strain_kip_in() const {
-  work_.noalias() = building_.stiffness() * last_x_;
+  work_.noalias() = stiffness_ * last_x_;
   return 0.5 * last_x_.dot(work_);
 }
 
@@ -56,9 +60,9 @@ void EnergyLedger::check_sizes(const Eigen::VectorXd& x, const Eigen::VectorXd& 
 EnergyLedger::Powers EnergyLedger::powers(const Eigen::VectorXd& v, double ug, const Eigen::VectorXd& f) const {
   Powers p;
   p.input = -v.dot(mass_iota_) * ug;
-  work_.noalias() = building_.damping() * v;
+  work_.noalias() = damping_matrix_ * v;
   p.damping = v.dot(work_);
-  drum_vel_.noalias() = building_.damper_gamma().transpose() * v;
+  drum_vel_.noalias() = gamma_t_ * v;
   p.damper = f.dot(drum_vel_);
   return p;
 }
@@ -119,20 +123,45 @@ void EnergyLedger::add_centred(double dt, const Eigen::VectorXd& x_next, double 
     throw std::invalid_argument("EnergyLedger: the centred-difference ledger needs a uniform step (" +
                                 std::to_string(dt_) + " s, then " + std::to_string(dt) + " s)");
   }
-  // ū_n = (x_{n+1} − x_{n−1})/(2Δt)
-  velocity_c_ = (x_next - x_prev_) / (2.0 * dt);
-  const Powers p = powers(velocity_c_, ug_now_, f_now_);  // drum_vel_ = Γᵀū_n
+  // One pass over the floors with raw pointers (the profile's hot spot: docs/step-loop-profile.md):
+  //   ū_n = (x_{n+1} − x_{n−1})/(2Δt),  δ²x = (x_{n+1} − 2x_n + x_{n−1})/Δt²,
+  //   x̄ = (x_{n+1} + 2x_n + x_{n−1})/4,
+  // then the row sums of M δ²x, K x̄ and C ū over the nonzeros of the sparse rows.
+  const int n = static_cast<int>(x_next.size());
+  const double* xn = x_next.data();
+  const double* x0 = x_now_.data();
+  const double* xp = x_prev_.data();
+  double* u = velocity_c_.data();
+  double* d2 = work2_.data();
+  double* mean = work_.data();
+  for (int i = 0; i < n; ++i) {
+    u[i] = (xn[i] - xp[i]) / (2.0 * dt);
+    d2[i] = (xn[i] - 2.0 * x0[i] + xp[i]) / (dt * dt);
+    mean[i] = 0.25 * (xn[i] + 2.0 * x0[i] + xp[i]);
+  }
+  Powers p;
+  double residual_power = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double m_d2 = 0.0, k_mean = 0.0, c_u = 0.0;
+    m_d2 = row_dot(mass_, i, d2);
+    k_mean = row_dot(stiffness_, i, mean);
+    c_u = row_dot(damping_matrix_, i, u);
+    p.input -= u[i] * mass_iota_[i];
+    p.damping += u[i] * c_u;
+    residual_power += u[i] * (m_d2 + k_mean);
+  }
+  p.input *= ug_now_;
+  for (int k = 0; k < gamma_t_.rows(); ++k) {
+    double drum = 0.0;
+    drum = row_dot(gamma_t_, k, u);
+    drum_vel_[k] = drum;
+    p.damper += f_now_[k] * drum;
+  }
   input_ += dt * p.input;
   damping_ += dt * p.damping;
   damper_ += dt * p.damper;
   for (int k = 0; k < f_now_.size(); ++k) damper_each_[k] += dt * f_now_[k] * drum_vel_[k];
   // r_n = M(x_{n+1} − 2x_n + x_{n−1})/Δt² + C ū_n + K(x_{n+1} + 2x_n + x_{n−1})/4 + M ι ü_g + Γ F_n
-  work2_ = (x_next - 2.0 * x_now_ + x_prev_) / (dt * dt);
-  work_.noalias() = building_.mass() * work2_;
-  double residual_power = velocity_c_.dot(work_);
-  work2_ = 0.25 * (x_next + 2.0 * x_now_ + x_prev_);
-  work_.noalias() = building_.stiffness() * work2_;
-  residual_power += velocity_c_.dot(work_);
   residual_power += p.damping - p.input + p.damper;
   algorithmic_ -= dt * residual_power;
   // Stored energies at n+½.

@@ -30,6 +30,7 @@
 /// (≈0.6 % over El Centro at Δt = 1/1024 s): that is why the run uses centred_difference.
 
 #include "structure/shear_building.h"
+#include "structure/sparse_rows.h"
 
 #include <Eigen/Dense>
 
@@ -83,6 +84,8 @@ class EnergyLedger {
   const ShearBuilding& building_;
   EnergyDefinition definition_;
   Eigen::VectorXd mass_iota_;                 // M·ι, precomputed
+  // M (diagonal), K and C (tridiagonal), Γᵀ stored sparse: the products skip exact zeros.
+  SparseRows mass_, stiffness_, damping_matrix_, gamma_t_;
   mutable Eigen::VectorXd work_, work2_, drum_vel_;  // scratch: add_step allocates nothing
   Eigen::VectorXd last_x_, last_v_;           // stored energies are computed on demand from these
   bool started_ = false;
