@@ -289,6 +289,7 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
       }
     }
   }
+  s.actuators_moving = moving;
   std::size_t rev_k = 0;
   double rev_disp = d[0];  // the motion start counts as a reversal
   for (std::size_t i = 0; i < n; ++i) {

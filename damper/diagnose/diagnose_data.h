@@ -70,6 +70,7 @@ struct Segmentation {
   std::size_t rest_begin = 0;            ///< first sample after the excitation stops (= size if none)
   std::vector<std::uint8_t> train;       ///< per sample: 1 training, 0 held-out
   std::vector<Regime> regime;            ///< per sample, time-domain regime
+  std::vector<std::uint8_t> actuators_moving;  ///< per sample: the actuators move (whatever the regime)
   /// Contiguous spans [begin, end) with their split label, in order (for reports/figures).
   struct Span {
     std::size_t begin, end;

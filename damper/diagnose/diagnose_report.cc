@@ -1,6 +1,7 @@
 #include "damper/diagnose/diagnose_report.h"
 
 #include "damper/model/brfd_config.h"
+#include "damper/model/effects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -189,52 +190,59 @@ std::vector<std::string> format_windows(const std::vector<ResidualWindow>& w, do
   return out;
 }
 
+std::string diagnose_final_line(const DiagnoseResult& r) {
+  std::ostringstream o;
+  std::string names;
+  for (const std::string& a : r.added) names += (names.empty() ? "" : ",") + a;
+  o << std::setprecision(4) << "effects=" << (names.empty() ? "none" : names)
+    << " nrmse_before=" << r.nrmse_before_mean << " nrmse_after=" << r.nrmse_after_mean
+    << " nrmse_after_max=" << r.nrmse_after_max;
+  return o.str();
+}
+
+std::string diagnose_confidence_line(const DiagnoseResult& r) {
+  std::ostringstream o;
+  o << std::setprecision(3) << "confidence:";
+  if (r.added.empty()) return o.str() + " none (" + r.stop_reason + ")";
+  for (std::size_t k = 0; k < r.added.size(); ++k)
+    o << " " << r.added[k] << "=" << (k < r.added_confidence.size() ? r.added_confidence[k] : 0.0);
+  o << " (share of bootstrap resamples of the held-out parts choosing it)";
+  return o.str();
+}
+
 std::vector<std::string> format_candidate_table(const std::vector<CandidateScore>& scores) {
   std::vector<std::string> out;
-  out.push_back("  " + pad("effect", 18) + pad("params", 58) + lpad("train RMSE", 11) + lpad("held-out", 10) +
-                lpad("change", 9) + lpad("dBIC", 9) + "  verdict");
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < scores.size(); ++k)
-    if (scores[k].delta_bic < scores[best].delta_bic) best = k;
-  for (std::size_t k = 0; k < scores.size(); ++k) {
-    const CandidateScore& c = scores[k];
+  out.push_back("  " + pad("effect", 17) + pad("params (all fitting data)", 62) + lpad("held-out RMSE", 16) + lpad("gain", 7) +
+                lpad("excess", 8) + lpad("parts", 7) + lpad("own", 6) + lpad("conf", 6) + "  verdict");
+  for (const CandidateScore& c : scores) {
     std::string params;
     for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? " " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 3);
-    const std::string verdict = k == best ? (c.accepted ? "winner, added" : "best, not material") : "";
-    out.push_back("  " + pad(c.effect, 18) + pad(params, 58) + lpad(fixed(c.train_rmse_kip, 4), 11) +
-                  lpad(fixed(c.heldout_rmse_kip, 4), 10) + lpad(fixed(-100.0 * c.heldout_gain, 1) + "%", 9) +
-                  lpad(fixed(c.delta_bic, 1), 9) + "  " + verdict);
+    if (c.theta.empty()) params = "(per fold)";
+    out.push_back("  " + pad(c.effect, 17) + pad(params, 62) +
+                  lpad(fixed(c.heldout_rmse_null_kip, 4) + "->" + fixed(c.heldout_rmse_kip, 4), 16) +
+                  lpad(fixed(100.0 * c.heldout_gain, 1) + "%", 7) + lpad(fixed(100.0 * c.excess_share, 0) + "%", 8) +
+                  lpad(std::to_string(c.parts_improved) + "/" + std::to_string(c.parts_changed), 7) +
+                  lpad(fixed(100.0 * c.signature_share, 0) + "%", 6) + lpad(fixed(100.0 * c.confidence, 0) + "%", 6) + "  " +
+                  (c.accepted ? "ADDED" : c.verdict));
   }
+  out.push_back("  (held-out RMSE: refitted model without -> with the candidate, same procedure and budget; gain: share of "
+                "the held-out mean square removed; excess: share of the residual above the noise floor removed; parts: "
+                "held-out parts improved / changed; own: share of the gain in its own regimes; conf: bootstrap)");
   return out;
 }
 
-std::string format_evidence(const CandidateScore& c, const RegimeEnergy& cur, double cur_rmse, double min_improvement,
-                            double bic_threshold) {
+std::string format_evidence(const CandidateScore& c) {
   std::ostringstream o;
   std::string params;
   for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? ", " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 4);
-  o << (c.accepted ? "winner: " : "best candidate: ") << c.effect << " (" << params << "): held-out RMSE "
-    << fixed(cur_rmse, 4) << " -> " << fixed(c.heldout_rmse_kip, 4) << " kip (" << fixed(-100.0 * c.heldout_gain, 1)
-    << "%), dBIC " << fixed(c.delta_bic, 1);
-  // The regimes where it removes the most held-out residual energy.
-  std::vector<std::pair<double, int>> drop;
-  for (int g = 0; g < kRegimeCount; ++g) drop.push_back({cur.energy[g] - c.heldout_energy.energy[g], g});
-  std::sort(drop.rbegin(), drop.rend());
-  const double total = cur.total();
-  o << "; held-out residual energy";
-  int shown = 0;
-  for (const auto& d : drop) {
-    if (shown == 2 || d.first <= 0.0 || total <= 0.0) break;
-    const int g = d.second;
-    o << (shown ? "," : "") << " " << describe(static_cast<Regime>(g)) << " " << fixed(cur.energy[g], 1) << " -> "
-      << fixed(c.heldout_energy.energy[g], 1) << " kip^2 (" << pct(d.first / total) << " of the total)";
-    ++shown;
-  }
-  if (shown == 0) o << " does not fall in any regime";
-  if (!c.accepted) {
-    o << "; not added: needs held-out RMSE down >= " << fixed(100.0 * min_improvement, 1) << "% and dBIC <= "
-      << fixed(bic_threshold, 1);
-  }
+  o << "added " << c.effect << " (" << params << "): held-out RMSE " << fixed(c.heldout_rmse_null_kip, 4) << " -> "
+    << fixed(c.heldout_rmse_kip, 4) << " kip (" << fixed(100.0 * c.heldout_gain, 1) << "% of the mean square, "
+    << fixed(100.0 * c.excess_share, 0) << "% of the excess over noise), better on " << c.parts_improved << " of the "
+    << c.parts_changed << " held-out parts it changes, " << fixed(100.0 * c.signature_share, 0)
+    << "% of the gain in its own regimes (" ;
+  const EffectSpec& spec = effect_spec(c.effect);
+  for (std::size_t k = 0; k < spec.regimes.size(); ++k) o << (k ? "/" : "") << spec.regimes[k];
+  o << "), chosen in " << fixed(100.0 * c.confidence, 0) << "% of bootstrap resamples";
   return o.str();
 }
 
@@ -292,11 +300,30 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
       << "# Started from: " << (o.model_path.empty() ? std::string("built-in defaults") : fs::absolute(o.model_path).string()) << "\n"
       << "# Effects added: " << added << "; effects in the model: "
       << (result.effects.empty() ? std::string("none") : result.effects.names()) << "\n";
-    if (o.base == BaseSource::identify && !result.added.empty())
-      y << "# LuGre block re-identified with the effects on the passive windows (before the first actuator\n"
-        << "# motion) of all measured records jointly; effect parameters fitted on the training samples.\n";
-    else
-      y << "# LuGre block as in the starting model; effect parameters fitted on the training samples.\n";
+    y << "# Effect parameters: fitted on the measured records (" << result.validation << ").\n";
+    if (o.base == BaseSource::identify && !result.added.empty()) {
+      y << "# Base parameters per record: the LuGre block is NOT what the 'after' column used. Each record's\n"
+        << "# LuGre parameters are re-identified on its passive window with these effects on, exactly as\n"
+        << "# `hybridsim damper predict` does by default (x'_1, x'_2 from the record's first row); this\n"
+        << "# reproduces the 'after' NRMSE printed by diagnose:\n";
+      for (const RecordReport& r : result.records) {
+        std::ostringstream w;
+        w << std::setprecision(10) << r.passive_end_s;
+        const bool passive = !r.segmentation.actuated;
+        y << "#   hybridsim damper predict --config model-updated.yaml --test " << r.path
+          << (passive ? " --fit-window 0:" + w.str() : std::string()) << "   # nrmse=" << fixed(r.after.nrmse_std, 4) << "\n";
+      }
+      y << "# The LuGre block below is one set for all records, identified on their passive windows jointly\n"
+        << "# with the effects on (for hybrid runs / --no-fit: NRMSE " ;
+      double u = 0.0;
+      for (const RecordReport& r : result.records) u += r.updated_config.nrmse_std;
+      y << fixed(u / static_cast<double>(std::max<std::size_t>(1, result.records.size())), 4) << " mean on these records).\n";
+    } else if (o.base == BaseSource::identify) {
+      y << "# No effect added: the model as given; bases per record identified as `hybridsim damper predict` does.\n";
+    } else {
+      y << "# Base: the starting model's LuGre block as is (diagnose --base model); x'_1, x'_2 from each record's\n"
+        << "# first row. Reproduce 'after' with: hybridsim damper predict --no-fit --config model-updated.yaml --test <record>\n";
+    }
     y << brfd_params_to_yaml(result.updated_params);
   }
 
@@ -342,12 +369,16 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
   // Tables as CSV.
   {
     std::ofstream c = open_out((out / "candidates.csv").string());
-    c << "round,effect,params,train_rmse_kip,heldout_rmse_kip,heldout_change,delta_bic,accepted\n";
+    c << "round,effect,params,heldout_rmse_null_kip,heldout_rmse_kip,heldout_gain,excess_share,parts_improved,"
+         "parts_changed,signature_share,confidence,verdict,accepted\n";
     for (const CandidateScore& s : result.candidates) {
       std::string params;
       for (std::size_t j = 0; j < s.theta.size(); ++j) params += (j ? " " : "") + s.parameter_names[j] + "=" + fmt(s.theta[j], 6);
-      c << s.round << ',' << s.effect << ',' << params << ',' << s.train_rmse_kip << ',' << s.heldout_rmse_kip << ','
-        << -s.heldout_gain << ',' << s.delta_bic << ',' << (s.accepted ? 1 : 0) << '\n';
+      std::string verdict = s.verdict;
+      std::replace(verdict.begin(), verdict.end(), ',', ';');
+      c << s.round << ',' << s.effect << ',' << params << ',' << s.heldout_rmse_null_kip << ',' << s.heldout_rmse_kip << ','
+        << s.heldout_gain << ',' << s.excess_share << ',' << s.parts_improved << ',' << s.parts_changed << ','
+        << s.signature_share << ',' << s.confidence << ',' << verdict << ',' << (s.accepted ? 1 : 0) << '\n';
     }
   }
   {
@@ -389,7 +420,7 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
   result.report_path = (out / "report.txt").string();
   std::ofstream rep = open_out(result.report_path);
   for (const std::string& l : lines) rep << l << "\n";
-  rep << diagnose_final_line(result) << "\n";
+  rep << diagnose_confidence_line(result) << "\n" << diagnose_final_line(result) << "\n";
 }
 
 }  // namespace damper

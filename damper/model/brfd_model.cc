@@ -27,6 +27,9 @@ void BrfdModel::reset() {
   z_in_ = 0.0;
   lag1_in_ = params_.semiactive.actuator1_initial_in;
   lag2_in_ = params_.semiactive.actuator2_initial_in;
+  resp1_in_ = lag1_in_;
+  resp2_in_ = lag2_in_;
+  resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
 }
 
@@ -76,8 +79,9 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const int c = forward ? 1 : 3;
     const double gain1 = s.scaling[a] * s.slopes_kip_per_in[a][0] + s.scaling[c] * s.slopes_kip_per_in[c][0];
     const double gain2 = s.scaling[a] * s.slopes_kip_per_in[a][1] + s.scaling[c] * s.slopes_kip_per_in[c][1];
-    const double x1 = e.actuator_lag ? lag1_in_ : in.actuator1_in;
-    const double x2 = e.actuator_lag ? lag2_in_ : in.actuator2_in;
+    const bool second = e.actuator_lag && e.actuator_lag->natural_period_s > 0.0;
+    const double x1 = e.actuator_lag ? (second ? resp1_in_ : lag1_in_) : in.actuator1_in;
+    const double x2 = e.actuator_lag ? (second ? resp2_in_ : lag2_in_) : in.actuator2_in;
     dfc = gain1 * (x1 - s.actuator1_initial_in) + gain2 * (x2 - s.actuator2_initial_in);
   }
   double fc = b + dfc;
@@ -91,7 +95,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   }
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
-    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in);
+    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in + e.self_energizing->drum_abs_per_in * std::abs(in.drum_disp_in));
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
   fc *= factor;
@@ -111,23 +115,34 @@ double BrfdModel::stribeck_kip(const DamperInput& in) const {
 }
 
 double BrfdModel::stiffness(bool positive_z) const {
-  const double s0 = params_.lugre.sigma0_kip_per_in;
+  const double s0 = params_.lugre.sigma0_kip_per_in * (params_.effects.backlash ? params_.effects.backlash->stiffness_ratio : 1.0);
   if (!params_.effects.asymmetry) return s0;
   return s0 * (positive_z ? 1.0 + params_.effects.asymmetry->stiffness : 1.0 - params_.effects.asymmetry->stiffness);
+}
+
+double BrfdModel::soft_spring(double over) const {
+  const double eps = params_.effects.backlash ? params_.effects.backlash->retension_in : 0.0;
+  if (eps <= 0.0) return over;
+  return over < eps ? over * over / (2.0 * eps) : over - 0.5 * eps;  // stiffness grows over ε
 }
 
 double BrfdModel::spring_force_kip(double z) const {
   if (!has_effects_) return params_.lugre.sigma0_kip_per_in * z;
   const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
-  const double over = std::max(std::abs(z) - slack, 0.0);  // backlash dead zone D(z)
+  const double over = soft_spring(std::max(std::abs(z) - slack, 0.0));  // backlash dead zone D(z)
   return z >= 0.0 ? stiffness(true) * over : -stiffness(false) * over;
 }
 
 double BrfdModel::bristle_for_force(double f) const {
   if (!has_effects_) return f / params_.lugre.sigma0_kip_per_in;
   const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
-  if (f > 0.0) return slack + f / stiffness(true);
-  if (f < 0.0) return -slack + f / stiffness(false);
+  const double eps = params_.effects.backlash ? params_.effects.backlash->retension_in : 0.0;
+  auto over_of = [eps](double s) {  // inverse of h: s = h(u)
+    if (eps <= 0.0) return s;
+    return s < 0.5 * eps ? std::sqrt(2.0 * eps * s) : s + 0.5 * eps;
+  };
+  if (f > 0.0) return slack + over_of(f / stiffness(true));
+  if (f < 0.0) return -slack - over_of(-f / stiffness(false));
   return 0.0;
 }
 
@@ -218,6 +233,25 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
     const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;
     lag1_in_ = in.actuator1_in + (lag1_in_ - in.actuator1_in) * keep;
     lag2_in_ = in.actuator2_in + (lag2_in_ - in.actuator2_in) * keep;
+    const double period = e.actuator_lag->natural_period_s;
+    if (period > 0.0) {
+      // Second-order response to x~ held over the step: semi-implicit sub-steps (h <= T/40),
+      // each solving the damping and stiffness terms implicitly (stable for any ζ, h).
+      const double w = 2.0 * M_PI / period, zeta = e.actuator_lag->damping_ratio;
+      const int n = std::clamp(static_cast<int>(std::ceil(dt_s * 40.0 / period)), 1, 4000);
+      const double h = dt_s / n;
+      const double den = 1.0 + 2.0 * zeta * w * h + w * w * h * h;
+      for (int i = 0; i < n; ++i) {
+        resp1_rate_ = (resp1_rate_ + h * w * w * (lag1_in_ - resp1_in_)) / den;
+        resp1_in_ += h * resp1_rate_;
+        resp2_rate_ = (resp2_rate_ + h * w * w * (lag2_in_ - resp2_in_)) / den;
+        resp2_in_ += h * resp2_rate_;
+      }
+    } else {
+      resp1_in_ = lag1_in_;
+      resp2_in_ = lag2_in_;
+      resp1_rate_ = resp2_rate_ = 0.0;
+    }
   }
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
@@ -231,9 +265,12 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const double slack = e.backlash ? e.backlash->slack_in : 0.0;
   const double k = speed / f.g;  // |v| / g(v)
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
-  if (e.transition_shape && e.transition_shape->exponent != 1.0) {
-    // Nonlinear bristle law: RK4 sub-steps, enough to keep h × (largest rate constant) <= 0.25.
-    const double alpha = e.transition_shape->exponent;
+  const bool shaped = e.transition_shape && e.transition_shape->exponent != 1.0;
+  const bool soft = e.backlash && e.backlash->retension_in > 0.0;
+  if (shaped || soft) {
+    // Nonlinear bristle law (Dahl exponent, or the soft re-tensioning spring): RK4 sub-steps,
+    // enough to keep h × (largest rate constant) <= 0.25.
+    const double alpha = shaped ? e.transition_shape->exponent : 1.0;
     const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
     const double stiff = k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);

@@ -152,7 +152,10 @@ class BrfdModel final : public DamperModel {
   BrfdParams params_;
   bool has_effects_ = false;
   double z_in_ = 0.0;
-  double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag
+  double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag (first-order stage)
+  double resp1_in_ = 0.0, resp2_in_ = 0.0;  ///< y_1, y_2 of actuator_lag (second-order stage)
+  double resp1_rate_ = 0.0, resp2_rate_ = 0.0;  ///< dy_k/dt, in/s
+  double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
 };
 

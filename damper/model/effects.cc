@@ -23,8 +23,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   ModelEffects e;
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
-    b.allow_only({"slack_in"});
-    e.backlash = BacklashEffect{b.get_double_in("slack_in", 0.0, 2.0)};
+    b.allow_only({"slack_in", "retension_in", "stiffness_ratio"});
+    BacklashEffect x;
+    x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
+    x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
+    x.stiffness_ratio = b.get_double_in("stiffness_ratio", 1.0, 0.01, 100.0);
+    e.backlash = x;
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
@@ -36,8 +40,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("actuator_lag")) {
     const common::YamlSection a = s.section("actuator_lag");
-    a.allow_only({"time_constant_s"});
-    e.actuator_lag = ActuatorLagEffect{a.get_double_in("time_constant_s", 0.0, 100.0)};
+    a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio"});
+    ActuatorLagEffect x;
+    x.time_constant_s = a.get_double_in("time_constant_s", 0.0, 100.0);
+    x.natural_period_s = a.get_double_in("natural_period_s", 0.0, 0.0, 100.0);
+    x.damping_ratio = a.get_double_in("damping_ratio", 1.0, 0.01, 100.0);
+    e.actuator_lag = x;
   }
   if (s.has("asymmetry")) {
     const common::YamlSection a = s.section("asymmetry");
@@ -65,10 +73,11 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
-    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in"});
+    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
+    x.drum_abs_per_in = p.get_double_in("drum_abs_per_in", 0.0, -5.0, 5.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -116,13 +125,22 @@ EffectSpec make_spec(std::string name, std::string title, std::string equation,
 std::vector<EffectSpec> build_library() {
   std::vector<EffectSpec> lib;
   lib.push_back(make_spec<std::optional<BacklashEffect> ModelEffects::*, BacklashEffect>(
-      "backlash", "band slack after reversal: force near zero over a drum travel 2*slack",
-      "S(z) = sigma0 * sign(z) * max(|z| - slack, 0); dz/dt = v - |v| S(z)/g(v); F = S(z) + sigma1 dz/dt + sigma2 v",
-      {{"slack_in", 0.0, 0.25, 0.0, 0.03, false}}, &ModelEffects::backlash,
-      std::function<BacklashEffect(const std::vector<double>&)>(
-          [](const std::vector<double>& t) { return BacklashEffect{t[0]}; }),
+      "backlash", "band slack after reversal: force near zero over a drum travel 2*slack, gradual re-tension",
+      "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
+      "beyond; dz/dt = v - |v| S(z)/g(v); F = S(z) + sigma1 dz/dt + sigma2 v",
+      {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
+       {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
+       {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true}},
+      &ModelEffects::backlash,
+      std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        BacklashEffect b;
+        b.slack_in = t[0];
+        b.retension_in = t[1];
+        b.stiffness_ratio = t[2];
+        return b;
+      }),
       std::function<std::vector<double>(const BacklashEffect&)>(
-          [](const BacklashEffect& b) { return std::vector<double>{b.slack_in}; })));
+          [](const BacklashEffect& b) { return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio}; })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "residual static force after motion stops: at rest the force settles to ratio*Fc",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.2 s), S(z_r) = sign(z) ratio Fc",
@@ -137,13 +155,22 @@ std::vector<EffectSpec> build_library() {
       std::function<std::vector<double>(const ResidualStaticEffect&)>(
           [](const ResidualStaticEffect& r) { return std::vector<double>{r.ratio, r.time_constant_s}; })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
-      "actuator_lag", "kinetic friction lags the electric actuator motion (first order)",
-      "Eq. (4) with x~_k: dx~_k/dt = (x_k - x~_k)/tau_a",
-      {{"time_constant_s", 0.0, 0.6, 0.0, 0.08, false}}, &ModelEffects::actuator_lag,
-      std::function<ActuatorLagEffect(const std::vector<double>&)>(
-          [](const std::vector<double>& t) { return ActuatorLagEffect{t[0]}; }),
-      std::function<std::vector<double>(const ActuatorLagEffect&)>(
-          [](const ActuatorLagEffect& a) { return std::vector<double>{a.time_constant_s}; })));
+      "actuator_lag", "kinetic friction follows the electric actuator motion late (first- and second-order response)",
+      "Eq. (4) with y_k: dx~_k/dt = (x_k - x~_k)/tau_a, y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
+      {{"time_constant_s", 0.0, 0.6, 0.0, 0.08, false},
+       {"natural_period_s", 0.0, 0.6, 0.0, 0.15, false},
+       {"damping_ratio", 0.2, 2.0, 1.0, 0.7, false}},
+      &ModelEffects::actuator_lag,
+      std::function<ActuatorLagEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        ActuatorLagEffect a;
+        a.time_constant_s = t[0];
+        a.natural_period_s = t[1];
+        a.damping_ratio = t[2];
+        return a;
+      }),
+      std::function<std::vector<double>(const ActuatorLagEffect&)>([](const ActuatorLagEffect& a) {
+        return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio};
+      })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels and band stiffness",
       "Fc, Fs x (1 +- level) forward/backward; sigma0 x (1 +- stiffness) for z >= 0 / z < 0",
@@ -186,17 +213,20 @@ std::vector<EffectSpec> build_library() {
           [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share}; })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut)",
-      "Fc, Fs x (1 + kappa_dir d), kappa_fwd for v >= 0, kappa_bwd for v < 0",
-      {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false}, {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false}},
+      "Fc, Fs x (1 + kappa_dir d + mu |d|), kappa_fwd for v >= 0, kappa_bwd for v < 0",
+      {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false},
+       {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false},
+       {"drum_abs_per_in", -0.4, 0.4, 0.0, 0.1, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
         p.drum_fwd_per_in = t[0];
         p.drum_bwd_per_in = t[1];
+        p.drum_abs_per_in = t[2];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
-        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in};
+        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape", "sharper stick-to-slip transition (Dahl exponent of the bristle law)",
@@ -206,6 +236,22 @@ std::vector<EffectSpec> build_library() {
           [](const std::vector<double>& t) { return TransitionShapeEffect{t[0]}; }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>(
           [](const TransitionShapeEffect& a) { return std::vector<double>{a.exponent}; })));
+  // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
+  auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
+    for (EffectSpec& s : lib)
+      if (s.name == name) {
+        s.regimes = std::move(regimes);
+        s.confusable = std::move(confusable);
+      }
+  };
+  sig("backlash", {"reversal"}, {"residual_static", "transition_shape"});
+  sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
+  sig("actuator_lag", {"actuators"}, {"pretension"});
+  sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
+  sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});
+  sig("pretension", {"actuators"}, {"self_energizing", "asymmetry", "actuator_lag"});
+  sig("self_energizing", {"sliding", "actuators"}, {"pretension", "asymmetry"});
+  sig("transition_shape", {"reversal", "sticking"}, {"backlash", "residual_static", "velocity"});
   return lib;
 }
 

@@ -9,17 +9,25 @@
 /// d drum displacement, v drum velocity, x_k actuator positions, z band/bristle state (in),
 /// b the base kinetic friction per direction, ΔFc the Eq. (4) increment (gain · (x − x')).
 ///
-///  - backlash (slack_in = δ): band slack after a reversal. The band spring has a dead zone:
-///      S(z) = σ0 · D_δ(z),  D_δ(z) = sign(z) · max(|z| − δ, 0)
+///  - backlash (slack_in = δ, retension_in = ε, stiffness_ratio = k): band slack after a reversal,
+///    and the gradual re-tensioning of the other band (the three stages of Cao et al. 2015:
+///    release, dead zone, gradual re-engagement). The band spring has a dead zone, a soft onset and
+///    its own stiffness k σ0 (a taut band releases its force over a shorter travel than the lumped
+///    LuGre σ0, which also stands for the slack, suggests):
+///      S(z) = k σ0 · sign(z) · h(max(|z| − δ, 0)),  h(u) = u²/(2ε) for u < ε, u − ε/2 beyond
 ///      dz/dt = v − |v| S(z) / g(v),   F = S(z) + σ1 dz/dt + σ2 v
-///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then rises.
+///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then its
+///    stiffness rises linearly over a further ε of band stretch (ε = 0: the plain dead zone).
 ///  - residual_static (ratio = ρ, time_constant_s = τ_r): residual static force after motion
 ///    stops. When the drum has been at rest (low-passed speed s̃ below v_rest) the band force
 ///    settles towards ρ times the kinetic friction of the loaded direction:
 ///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),  S(z_r) = sign(z) ρ Fc
 ///      ds̃/dt = (|v| − s̃) / τ_s,  τ_s = 0.05 s, v_rest = 0.05 in/s (fixed); s̃(0) = 1000 in/s.
-///  - actuator_lag (time_constant_s = τ_a): the kinetic friction follows the actuator motion
-///    with a first-order lag: Eq. (4) uses x̃_k, dx̃_k/dt = (x_k − x̃_k)/τ_a, x̃_k(0) = x'_k.
+///  - actuator_lag (time_constant_s = τ_a, natural_period_s = T, damping_ratio = ζ): the
+///    kinetic friction follows the actuator motion through a first-order lag and a second-order
+///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
+///      dx̃_k/dt = (x_k − x̃_k)/τ_a,   ÿ_k = ω² (x̃_k − y_k) − 2ζω ẏ_k,  ω = 2π/T
+///    (τ_a = 0: x̃ = x; T = 0: y = x̃); x̃_k(0) = y_k(0) = x'_k, ẏ_k(0) = 0.
 ///  - asymmetry (level = a_F, stiffness = a_σ): direction asymmetry beyond per-direction Fc/Fs:
 ///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
 ///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0).
@@ -31,9 +39,10 @@
 ///      dz/dt = v − |v| N_λ S(z)/g(v),  N_λ = 1 + λ (N − 1)
 ///    (λ: share of a tension change that scales the band force at once, as friction scales with
 ///    normal force, instead of through the LuGre transition; steady sliding is unchanged).
-///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b): friction levels change with
-///    the drum rotation (the rotating drum draws the bands taut): Fc, Fs × (1 + κ_dir d),
-///    κ_f for v ≥ 0, κ_b for v < 0.
+///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ):
+///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
+///    Fc, Fs × (1 + κ_dir d + μ |d|), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
+///    either way, e.g. the band wrapping further round the drum).
 ///  - transition_shape (exponent = α): sharper stick-to-slip transition (Dahl's exponent). With
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation)
@@ -55,7 +64,9 @@ namespace damper {
 
 /// Band slack after reversal (see file comment).
 struct BacklashEffect {
-  double slack_in = 0.0;  ///< δ: half the drum travel over which the force sits near zero, in
+  double slack_in = 0.0;      ///< δ: half the drum travel over which the force sits near zero, in
+  double retension_in = 0.0;  ///< ε: band stretch over which the stiffness re-grows after the slack, in
+  double stiffness_ratio = 1.0;  ///< k: band stiffness / σ0 (> 0)
 };
 /// Residual static force after motion stops (see file comment).
 struct ResidualStaticEffect {
@@ -66,7 +77,9 @@ struct ResidualStaticEffect {
 };
 /// First-order lag of the kinetic friction behind the actuator motion (see file comment).
 struct ActuatorLagEffect {
-  double time_constant_s = 0.0;  ///< τ_a, s (>= 0; 0 = no lag)
+  double time_constant_s = 0.0;   ///< τ_a, s (>= 0; 0 = no first-order lag)
+  double natural_period_s = 0.0;  ///< T = 2π/ω of the second-order response, s (0 = none)
+  double damping_ratio = 1.0;     ///< ζ of the second-order response (> 0)
 };
 /// Direction asymmetry (see file comment).
 struct AsymmetryEffect {
@@ -87,6 +100,7 @@ struct PretensionEffect {
 struct SelfEnergizingEffect {
   double drum_fwd_per_in = 0.0;  ///< κ_f: relative change of Fc, Fs per in of drum displacement, v >= 0
   double drum_bwd_per_in = 0.0;  ///< κ_b: same for v < 0
+  double drum_abs_per_in = 0.0;  ///< μ: relative change per in of |d|, both directions
 };
 
 /// Shape of the stick-to-slip transition (see file comment).
@@ -140,6 +154,11 @@ struct EffectSpec {
   std::function<std::vector<double>(const ModelEffects& effects)> get;
   std::function<bool(const ModelEffects& effects)> present;
   std::function<void(ModelEffects& effects)> remove;
+  /// Physics signature: the regimes (names as in diagnose_data.h: reversal, sticking, sliding,
+  /// actuators, after_stop) where the effect must take residual away.
+  std::vector<std::string> regimes;
+  /// Effects whose residual signature overlaps this one's (confusable pairs).
+  std::vector<std::string> confusable;
 };
 
 /// The library: backlash, residual_static, actuator_lag, asymmetry, velocity, pretension,

@@ -37,15 +37,15 @@ std::vector<double> run(const BrfdParams& p, const SyntheticOptions& o, int subs
 
 ModelEffects all_effects() {
   ModelEffects e;
-  e.backlash = BacklashEffect{0.04};
+  e.backlash = BacklashEffect{0.04, 0.03};
   e.residual_static = ResidualStaticEffect{};
   e.residual_static->ratio = 0.5;
   e.residual_static->time_constant_s = 0.2;
-  e.actuator_lag = ActuatorLagEffect{0.1};
+  e.actuator_lag = ActuatorLagEffect{0.1, 0.2, 0.6};
   e.asymmetry = AsymmetryEffect{0.1, 0.3};
   e.velocity = VelocityEffect{1.5, 0.2};
   e.pretension = PretensionEffect{0.8, 0.7};
-  e.self_energizing = SelfEnergizingEffect{-0.15, 0.1};
+  e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12};
   e.transition_shape = TransitionShapeEffect{3.0};
   return e;
 }
@@ -95,6 +95,7 @@ TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
   p.effects.actuator_lag.reset();
   p.effects.residual_static.reset();
   p.effects.transition_shape.reset();  // RK4 sub-steps: checked against RK4 below
+  p.effects.backlash->retension_in = 0.0;  // idem (the soft re-tensioning spring is nonlinear)
   SyntheticOptions o;
   o.rate_hz = 256.0;
   const std::vector<double> one = run(p, o, 1);
@@ -160,6 +161,74 @@ TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
   }
   EXPECT_NEAR(near_zero_travel, 2.0 * slack, 2.0 * v * dt);
   EXPECT_NEAR(m.step(in, dt), -p.lugre.fc_bwd_kip, 1e-6);
+}
+
+TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
+  // h(u) = u²/(2ε) below ε, u − ε/2 beyond: continuous with continuous slope; bristle_for_force
+  // inverts it; the stiffness dS/dz grows linearly from 0 at the end of the slack to σ0 at ε.
+  BrfdParams p = synthetic_base();
+  p.effects.backlash = BacklashEffect{0.05, 0.04};
+  const BrfdModel m(p);
+  const double s0 = p.lugre.sigma0_kip_per_in;
+  for (double z : {-0.3, -0.09, -0.07, -0.051, 0.0, 0.02, 0.06, 0.08, 0.0899, 0.2}) {
+    const double f = m.spring_force_kip(z);
+    if (std::abs(z) > 0.05) {
+      const double u = std::abs(z) - 0.05;
+      const double h = u < 0.04 ? u * u / 0.08 : u - 0.02;
+      EXPECT_NEAR(std::abs(f), s0 * h, 1e-12) << z;
+      EXPECT_NEAR(m.bristle_for_force(f), z, 1e-12) << z;
+    } else {
+      EXPECT_EQ(f, 0.0) << z;
+    }
+  }
+  const double dz = 1e-7;
+  EXPECT_NEAR((m.spring_force_kip(0.07 + dz) - m.spring_force_kip(0.07)) / dz, s0 * 0.02 / 0.04, 1e-3 * s0);
+  EXPECT_NEAR((m.spring_force_kip(0.2 + dz) - m.spring_force_kip(0.2)) / dz, s0, 1e-3 * s0);
+}
+
+TEST(Effects, SecondOrderActuatorFollowsTheClosedFormStepResponse) {
+  // Drum at rest (z frozen), actuator 1 stepped by Δx: Eq. (4) sees y(t) of
+  // ÿ + 2ζω ẏ + ω² y = ω² Δx: y = Δx [1 − e^(−ζωt) (cos ω_d t + ζ/√(1−ζ²) sin ω_d t)].
+  BrfdParams p = synthetic_base();
+  const double period = 0.2, zeta = 0.4, dx = -0.02;
+  p.effects.actuator_lag = ActuatorLagEffect{0.0, period, zeta};
+  BrfdModel m(p);
+  BrfdParams q = synthetic_base();
+  const BrfdModel plain(q);
+  DamperInput in;
+  in.drum_vel_in_per_s = 0.0;
+  in.actuator1_in = p.semiactive.actuator1_initial_in + dx;
+  in.actuator2_in = p.semiactive.actuator2_initial_in;
+  DamperInput rest = in;
+  rest.actuator1_in = p.semiactive.actuator1_initial_in;
+  const double b = plain.kinetic_friction_kip(rest);
+  const double gain = (plain.kinetic_friction_kip(in) - b) / dx;  // kip/in, forward (v = 0)
+  const double w = 2.0 * M_PI / period, wd = w * std::sqrt(1.0 - zeta * zeta);
+  const double dt = 1.0 / 1024.0;
+  double worst = 0.0, peak = 0.0;
+  for (int i = 1; i <= 1024; ++i) {
+    m.step(in, dt);
+    const double t = i * dt;
+    const double y = (m.kinetic_friction_kip(in) - b) / gain;
+    const double exact = dx * (1.0 - std::exp(-zeta * w * t) * (std::cos(wd * t) + zeta / std::sqrt(1 - zeta * zeta) * std::sin(wd * t)));
+    worst = std::max(worst, std::abs(y - exact));
+    peak = std::max(peak, y / dx);
+  }
+  EXPECT_LT(worst, 0.03 * std::abs(dx));
+  EXPECT_NEAR(peak, 1.0 + std::exp(-zeta * M_PI / std::sqrt(1 - zeta * zeta)), 0.03);  // overshoot
+}
+
+TEST(Effects, SelfEnergizingGrowsWithTheRotationEitherWay) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.effects.self_energizing = SelfEnergizingEffect{0.0, 0.0, 0.2};
+  const BrfdModel m(p);
+  for (double d : {-0.5, 0.0, 0.5, 1.0}) {
+    DamperInput in;
+    in.drum_disp_in = d;
+    in.drum_vel_in_per_s = 1.0;
+    EXPECT_NEAR(m.kinetic_friction_kip(in), p.lugre.fc_fwd_kip * (1.0 + 0.2 * std::abs(d)), 1e-12) << d;
+  }
 }
 
 TEST(Effects, SteadySlidingIsUnchangedByBacklashAndPretension) {

@@ -1,0 +1,416 @@
+#include "damper/diagnose/diagnose_bench.h"
+
+#include "damper/model/brfd_config.h"
+#include "damper/diagnose/diagnose.h"
+#include "damper/model/effects.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+#include <algorithm>
+
+namespace damper {
+
+namespace {
+
+std::string fixed(double v, int d) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(d) << v;
+  return o.str();
+}
+
+double raised_ramp(double s) { return s <= 0.0 ? 0.0 : s >= 1.0 ? 1.0 : 0.5 - 0.5 * std::cos(M_PI * s); }
+
+constexpr double kMotionS = 12.0, kRestS = 2.0;
+
+BrfdParams with_initial(BrfdParams p, const BrfdTest& t) {
+  p.semiactive.actuator1_initial_in = t.actuator1_in[0];
+  p.semiactive.actuator2_initial_in = t.actuator2_in[0];
+  return p;
+}
+
+// Force of a model on the inputs of `t`, bristle state from 0 (as a test starting unloaded).
+std::vector<double> generate(const BrfdParams& p, const BrfdTest& t) {
+  BrfdModel m(p);
+  std::vector<double> f(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+    f[i] = i == 0 ? m.force_kip(m.bristle_in(), in) : m.step(in, t.dt_s);
+  }
+  return f;
+}
+
+BenchCase library_case(const std::string& effect, const std::string& strength, std::vector<double> theta) {
+  BenchCase c;
+  c.name = effect + "/" + strength;
+  c.family = effect;
+  c.truth = [effect, theta](const BrfdTest& t, const BrfdParams& base) {
+    BrfdParams p = with_initial(base, t);
+    effect_spec(effect).set(p.effects, theta);
+    return generate(p, t);
+  };
+  return c;
+}
+
+// Own shapes (not library formulas).
+// Backlash as a weight on the force over the drum travel s since each reversal: the old band
+// unloads linearly over 0.01 in, no force over the gap, then a raised-cosine re-engagement.
+BenchCase own_backlash(const std::string& strength, double gap_in, double ramp_in) {
+  BenchCase c;
+  c.name = "own:backlash_weight/" + strength;
+  c.family = "backlash";
+  c.truth = [gap_in, ramp_in](const BrfdTest& t, const BrfdParams& base) {
+    std::vector<double> f = generate(with_initial(base, t), t);
+    double travel = 0.0;
+    int dir = 0;
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      const double v = t.drum_vel_in_per_s[i];
+      const int d = v > 1e-9 ? 1 : v < -1e-9 ? -1 : 0;
+      if (d != 0 && d != dir) {
+        dir = d;
+        travel = 0.0;
+      }
+      travel += std::abs(t.drum_disp_in[i] - t.drum_disp_in[i - 1]);
+      double w = 1.0;
+      if (travel < 0.01) w = 1.0 - travel / 0.01;
+      else if (travel < gap_in) w = 0.0;
+      else w = raised_ramp((travel - gap_in) / ramp_in);
+      if (travel < gap_in + ramp_in) f[i] *= w;
+    }
+    return f;
+  };
+  return c;
+}
+
+// A pure transport delay of the electric actuators.
+BenchCase own_delay(const std::string& strength, double delay_s) {
+  BenchCase c;
+  c.name = "own:actuator_delay/" + strength;
+  c.family = "actuator_lag";
+  c.truth = [delay_s](const BrfdTest& t, const BrfdParams& base) {
+    BrfdTest d = t;
+    const std::size_t k = static_cast<std::size_t>(std::lround(delay_s / t.dt_s));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      d.actuator1_in[i] = i >= k ? t.actuator1_in[i - k] : t.actuator1_in[0];
+      d.actuator2_in[i] = i >= k ? t.actuator2_in[i - k] : t.actuator2_in[0];
+    }
+    return generate(with_initial(base, t), d);
+  };
+  return c;
+}
+
+// Friction levels b, Fs x (1 + a d^2): even in the drum displacement.
+BenchCase own_friction_d2(const std::string& strength, double a) {
+  BenchCase c;
+  c.name = "own:friction_d2/" + strength;
+  c.family = "self_energizing";
+  c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
+    const BrfdParams p0 = with_initial(base, t);
+    std::vector<double> f(t.size());
+    double z = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      BrfdParams p = p0;
+      const double k = 1.0 + a * t.drum_disp_in[i] * t.drum_disp_in[i];
+      p.lugre.fc_fwd_kip *= k;
+      p.lugre.fc_bwd_kip *= k;
+      p.lugre.fs_fwd_kip *= k;
+      p.lugre.fs_bwd_kip *= k;
+      BrfdModel m(p);
+      m.set_bristle_in(z);
+      const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+      f[i] = i == 0 ? m.force_kip(z, in) : m.step(in, t.dt_s);
+      z = m.bristle_in();
+    }
+    return f;
+  };
+  return c;
+}
+
+// The held force relaxes hyperbolically after the drum stops: F (1 - rho s/(s + tau)).
+BenchCase own_rest_creep(const std::string& strength, double rho, double tau_s) {
+  BenchCase c;
+  c.name = "own:rest_creep/" + strength;
+  c.family = "residual_static";
+  c.truth = [rho, tau_s](const BrfdTest& t, const BrfdParams& base) {
+    std::vector<double> f = generate(with_initial(base, t), t);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double s = t.time_s[i] - kMotionS;
+      if (s > 0.0) f[i] *= 1.0 - rho * s / (s + tau_s);
+    }
+    return f;
+  };
+  return c;
+}
+
+BenchCase none_case(bool identify) {
+  BenchCase c;
+  c.name = identify ? "none/identify" : "none/model";
+  c.family = "none";
+  c.identify = identify;
+  c.truth = [](const BrfdTest& t, const BrfdParams& base) { return generate(with_initial(base, t), t); };
+  return c;
+}
+
+double nrmse_vs(const std::vector<double>& truth, const std::vector<double>& pred) {
+  double m = 0.0, se = 0.0, var = 0.0;
+  for (double x : truth) m += x;
+  m /= static_cast<double>(truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    se += (pred[i] - truth[i]) * (pred[i] - truth[i]);
+    var += (truth[i] - m) * (truth[i] - m);
+  }
+  return var > 0.0 ? std::sqrt(se / var) : 0.0;
+}
+
+}  // namespace
+
+BrfdParams bench_base_model() {
+  BrfdParams p;
+  p.kind = DamperKind::semiactive;
+  p.lugre.sigma0_kip_per_in = 30.0;
+  p.lugre.sigma1_kip_s_per_in = 0.01;
+  p.lugre.sigma2_kip_s_per_in = 0.1;
+  p.lugre.fc_fwd_kip = 3.0;
+  p.lugre.fc_bwd_kip = 2.2;
+  p.lugre.fs_fwd_kip = 4.0;
+  p.lugre.fs_bwd_kip = 3.0;
+  p.lugre.vs_in_per_s = 0.6;
+  p.semiactive.actuator1_initial_in = 0.655;
+  p.semiactive.actuator2_initial_in = 0.8559;
+  return p;
+}
+
+std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
+  struct Pulse {
+    double t0, a;
+    bool one, two;
+  };
+  const std::vector<std::pair<double, std::vector<Pulse>>> variants = {
+      {1.0, {{3.5, 0.03, true, false}, {6.5, 0.03, false, true}, {7.5, 0.015, true, true}}},
+      {0.8, {{4.5, 0.03, false, true}, {8.5, 0.025, true, false}, {9.5, 0.02, true, true}}}};
+  std::vector<BrfdTest> out;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    BrfdTest t;
+    t.path = "bench/drive" + std::string(1, static_cast<char>('A' + v)) + ".json";
+    t.dt_s = 1.0 / rate_hz;
+    t.has_actuator_positions = true;
+    const std::size_t n = static_cast<std::size_t>(std::lround((kMotionS + kRestS) * rate_hz));
+    const double amp = variants[v].first, w = M_PI, tr = 2.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double time = static_cast<double>(i) * t.dt_s;
+      double env = 0.0, denv = 0.0;
+      if (time < kMotionS) {
+        if (time < tr) {
+          env = raised_ramp(time / tr);
+          denv = 0.5 * M_PI / tr * std::sin(M_PI * time / tr);
+        } else if (time > kMotionS - tr) {
+          env = raised_ramp((kMotionS - time) / tr);
+          denv = -0.5 * M_PI / tr * std::sin(M_PI * (kMotionS - time) / tr);
+        } else {
+          env = 1.0;
+        }
+      }
+      double x1 = base.semiactive.actuator1_initial_in, x2 = base.semiactive.actuator2_initial_in;
+      for (const Pulse& p : variants[v].second) {
+        if (time < p.t0 || time >= p.t0 + 1.0) continue;
+        const double dx = -p.a * std::sin(2.0 * M_PI * (time - p.t0));
+        if (p.one) x1 += dx;
+        if (p.two) x2 += dx;
+      }
+      t.time_s.push_back(time);
+      t.drum_disp_in.push_back(amp * env * std::sin(w * time));
+      t.drum_vel_in_per_s.push_back(amp * (denv * std::sin(w * time) + env * w * std::cos(w * time)));
+      t.actuator1_in.push_back(x1);
+      t.actuator2_in.push_back(x2);
+      t.actuator1_force_lb.push_back(0.0);
+      t.actuator2_force_lb.push_back(0.0);
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::vector<BenchCase> bench_cases(bool quick) {
+  std::vector<BenchCase> c;
+  if (quick) {
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0}));
+    c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
+    c.push_back(library_case("transition_shape", "strong", {5.0}));
+    c.push_back(own_backlash("strong", 0.08, 0.1));
+    c.push_back(own_friction_d2("strong", 0.3));
+    c.push_back(none_case(false));
+    return c;
+  }
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0}));
+  c.push_back(library_case("residual_static", "weak", {0.4, 0.2}));
+  c.push_back(library_case("residual_static", "strong", {0.8, 0.1}));
+  c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
+  c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.25}));
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8}));
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15}));
+  c.push_back(library_case("transition_shape", "weak", {2.5}));
+  c.push_back(library_case("transition_shape", "strong", {5.0}));
+  c.push_back(own_backlash("weak", 0.04, 0.1));
+  c.push_back(own_backlash("strong", 0.08, 0.1));
+  c.push_back(own_delay("weak", 0.05));
+  c.push_back(own_delay("strong", 0.1));
+  c.push_back(own_friction_d2("weak", 0.15));
+  c.push_back(own_friction_d2("strong", 0.3));
+  c.push_back(own_rest_creep("weak", 0.3, 0.3));
+  c.push_back(own_rest_creep("strong", 0.6, 0.2));
+  c.push_back(none_case(false));
+  c.push_back(none_case(true));
+  return c;
+}
+
+std::string bench_final_line(const BenchResult& r) {
+  std::ostringstream o;
+  o << "trials=" << r.trials.size() << " correct=" << r.correct << " wrong=" << r.wrong
+    << " false_positive=" << r.false_positive;
+  return o.str();
+}
+
+BenchResult run_diagnose_bench(const BenchOptions& bo) {
+  auto log = [&bo](const std::string& s) {
+    if (bo.log) bo.log(s);
+  };
+  BenchResult res;
+  const BrfdParams base = bench_base_model();
+  const std::vector<BrfdTest> drives = bench_drives(base, 512.0);
+  std::vector<BenchCase> cases = bench_cases(bo.quick);
+  cases.insert(cases.end(), bo.extra.begin(), bo.extra.end());
+  const std::vector<double> noise = bo.quick ? std::vector<double>{0.05} : bo.noise_kip;
+  const int seeds = bo.quick ? 1 : bo.seeds;
+  const std::string model_path =
+      (std::filesystem::temp_directory_path() / ("diagnose-bench-base-" + std::to_string(::getpid()) + ".yaml")).string();
+  {
+    std::ofstream f(model_path);
+    f << brfd_params_to_yaml(base);
+  }
+  std::ofstream csv;
+  if (!bo.out_dir.empty()) {
+    std::filesystem::create_directories(bo.out_dir);
+    csv.open((std::filesystem::path(bo.out_dir) / "bench.csv").string());
+    csv << "case,family,seed,noise_kip,named,gap_before,gap_after,correct,false_positive,seconds\n";
+  }
+  log("case                              seed noise   named                          gap before -> after  verdict");
+  for (const BenchCase& c : cases) {
+    bool run = bo.only.empty();
+    for (const std::string& p : bo.only) run = run || c.name.rfind(p, 0) == 0;
+    if (!run) continue;
+    for (double sigma : noise) {
+      for (int s = 0; s < seeds; ++s) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const unsigned seed = 1000u * static_cast<unsigned>(s + 1) + static_cast<unsigned>(std::lround(sigma * 1000));
+        std::vector<BrfdTest> recs = drives;
+        std::vector<std::vector<double>> clean;
+        std::mt19937 rng(seed);
+        std::normal_distribution<double> nd(0.0, sigma);
+        for (BrfdTest& t : recs) {
+          clean.push_back(c.truth(t, base));
+          t.force_kip = clean.back();
+          for (double& f : t.force_kip) f += nd(rng);
+        }
+        DiagnoseOptions o;
+        o.model_path = model_path;
+        o.measured_tests = recs;
+        o.base = c.identify ? BaseSource::identify : BaseSource::model;
+        o.figures = false;
+        o.max_effects = 3;
+        o.seed = seed;
+        if (bo.verbose) o.log = bo.log;
+        if (c.identify) {
+          o.base_identification.global_runs = 1;
+          o.base_identification.global_max_evals = 1500;
+          o.base_identification.local_max_evals = 500;
+          o.base_refit_evals = 60;
+        }
+        const DiagnoseResult r = run_diagnose(o);
+        BenchTrial tr;
+        tr.case_name = c.name;
+        tr.family = c.family;
+        tr.seed = seed;
+        tr.noise_kip = sigma;
+        for (const std::string& a : r.added) tr.named += (tr.named.empty() ? "" : ",") + a;
+        if (tr.named.empty()) tr.named = "none";
+        for (std::size_t k = 0; k < r.records.size(); ++k) {
+          tr.gap_before += nrmse_vs(clean[k], r.records[k].model_before_kip) / static_cast<double>(r.records.size());
+          tr.gap_after += nrmse_vs(clean[k], r.records[k].model_after_kip) / static_cast<double>(r.records.size());
+        }
+        if (c.family == "none") {
+          tr.correct = tr.named == "none";
+          tr.false_positive = !tr.correct;
+        } else {
+          tr.correct = tr.named == c.family && tr.gap_after <= 0.5 * tr.gap_before;
+        }
+        tr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::ostringstream line;
+        line << std::left << std::setw(34) << c.name << std::setw(5) << s + 1 << std::setw(8) << fixed(sigma, 3)
+             << std::setw(31) << tr.named << std::right << std::setw(6) << fixed(tr.gap_before, 4) << " -> "
+             << std::setw(6) << fixed(tr.gap_after, 4) << "  " << (tr.correct ? "correct" : "WRONG") << " ("
+             << fixed(tr.seconds, 1) << " s)";
+        log(line.str());
+        if (csv) {
+          csv << c.name << ',' << c.family << ',' << seed << ',' << sigma << ',' << '"' << tr.named << '"' << ','
+              << tr.gap_before << ',' << tr.gap_after << ',' << tr.correct << ',' << tr.false_positive << ','
+              << tr.seconds << '\n';
+        }
+        res.correct += tr.correct ? 1 : 0;
+        res.wrong += tr.correct ? 0 : 1;
+        res.false_positive += tr.false_positive ? 1 : 0;
+        res.trials.push_back(tr);
+      }
+    }
+  }
+  std::filesystem::remove(model_path);
+  // Confusion matrix: hidden family (rows) x what was named (columns).
+  std::vector<std::string> cols;
+  for (const EffectSpec& e : effect_library()) cols.push_back(e.name);
+  cols.push_back("none");
+  cols.push_back("several");
+  std::map<std::string, std::map<std::string, int>> m;
+  std::vector<std::string> rows;
+  for (const BenchTrial& t : res.trials) {
+    if (std::find(rows.begin(), rows.end(), t.family) == rows.end()) rows.push_back(t.family);
+    const std::string col = t.named.find(',') != std::string::npos ? "several" : t.named;
+    ++m[t.family][col];
+  }
+  log("");
+  log("confusion matrix (rows: hidden family, columns: named; several = more than one effect):");
+  std::ostringstream head;
+  head << std::left << std::setw(17) << "hidden \\ named";
+  for (const std::string& c : cols) head << std::right << std::setw(9) << c.substr(0, 8);
+  head << std::setw(9) << "correct";
+  log(head.str());
+  for (const std::string& r : rows) {
+    std::ostringstream l;
+    l << std::left << std::setw(17) << r;
+    int n = 0, ok = 0;
+    for (const std::string& c : cols) {
+      const int v = m[r].count(c) ? m[r][c] : 0;
+      n += v;
+      l << std::right << std::setw(9) << (v ? std::to_string(v) : ".");
+    }
+    for (const BenchTrial& t : res.trials)
+      if (t.family == r && t.correct) ++ok;
+    l << std::setw(9) << (std::to_string(ok) + "/" + std::to_string(n));
+    log(l.str());
+  }
+  log(bench_final_line(res));
+  return res;
+}
+
+}  // namespace damper

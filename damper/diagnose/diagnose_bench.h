@@ -1,0 +1,75 @@
+#pragma once
+/// @file diagnose_bench.h
+/// `hybridsim diagnose bench` (docs/diagnose.md, "Benchmark"): the hidden-effect benchmark of the
+/// discrepancy workflow, with its own generator. Each trial makes two synthetic "measured"
+/// semi-active records (0.5 Hz ramped drum sinusoids of 1 in and 0.8 in, electric actuator moves
+/// on different strokes, 2 s at rest, white force noise), from a base model plus ONE hidden
+/// effect, and runs diagnose on them from the base model (--base model) or, for the 'none/identify'
+/// cases, from the base identified on the passive windows (the default path of a new user).
+/// Hidden effects: every effect of the library (effects.h) at two strengths, and shapes that are
+/// NOT library formulas (bench_own_shapes(): a weight-law backlash, a pure actuator delay, friction
+/// growing with d², a hyperbolic force relaxation at rest), and the 'none' cases (the exact base).
+/// A trial is correct when diagnose names exactly the hidden effect's family (none for none) and
+/// the gap to the noise-free truth (NRMSE) at least halves.
+
+#include "damper/data/brfd_data.h"
+#include "damper/model/brfd_model.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace damper {
+
+/// One hidden-effect case of the benchmark.
+struct BenchCase {
+  std::string name;    ///< e.g. "backlash/strong", "own:actuator_delay/weak", "none/model"
+  std::string family;  ///< the library effect that should be named, or "none"
+  bool identify = false;  ///< diagnose with --base identify (else --base model)
+  /// Noise-free "measured" force for the inputs of `test` (time, drum, actuators filled in).
+  std::function<std::vector<double>(const BrfdTest& test, const BrfdParams& base)> truth;
+};
+
+/// Options of run_diagnose_bench().
+struct BenchOptions {
+  bool quick = false;              ///< the CI subset (one seed, one noise level, strong effects)
+  int seeds = 3;
+  std::vector<double> noise_kip = {0.02, 0.06};
+  std::vector<std::string> only;   ///< case-name prefixes to run (empty: all)
+  std::string out_dir;             ///< bench.csv (empty: none)
+  std::function<void(const std::string&)> log;
+  bool verbose = false;            ///< also log each diagnose report
+  /// Extra cases (e.g. the hidden shapes of damper/synthetic), appended to the matrix.
+  std::vector<BenchCase> extra;
+};
+
+/// One trial's outcome.
+struct BenchTrial {
+  std::string case_name, family, named;  ///< named: comma-separated, or "none"
+  unsigned seed = 0;
+  double noise_kip = 0.0;
+  double gap_before = 0.0, gap_after = 0.0;  ///< NRMSE vs the noise-free truth, mean over records
+  bool correct = false, false_positive = false;
+  double seconds = 0.0;
+};
+
+/// Result: trials, and the summary counts of the last line.
+struct BenchResult {
+  std::vector<BenchTrial> trials;
+  int correct = 0, wrong = 0, false_positive = 0;
+};
+
+/// The base model of the benchmark (LuGre values close to those identified on the real tests,
+/// Tables 1-2 of the paper for Eq. 4).
+BrfdParams bench_base_model();
+/// The library cases (every effect x weak/strong), the own non-library shapes and 'none'.
+std::vector<BenchCase> bench_cases(bool quick);
+/// The two drives of a trial (inputs only; force empty), at rate_hz.
+std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz);
+
+/// Runs the matrix; logs one line per trial, the confusion matrix and, last,
+/// "trials=<n> correct=<n> wrong=<n> false_positive=<n>".
+BenchResult run_diagnose_bench(const BenchOptions& options);
+std::string bench_final_line(const BenchResult& result);
+
+}  // namespace damper

@@ -1,0 +1,89 @@
+#pragma once
+/// @file diagnose_fit.h
+/// Fit engine of `hybridsim diagnose` (docs/diagnose.md, "Fair nested comparison"): records with
+/// their split, the model state (a base per record + effects shared by all records), and one fit
+/// procedure used for EVERY model compared, with and without a candidate effect:
+///   repeat fit_iterations times:
+///     effect step: LN_BOBYQA on the effect parameters (unit-scaled, bounded) over the fitting
+///                  samples (skipped when no parameter is free: the model without the candidate);
+///     base step:   (identify mode) each record's LuGre parameters re-identified on its passive
+///                  window with the current effects (LN_BOBYQA, base_refit_evals).
+/// The model without the candidate thus gets exactly the same refit freedom and budget; a
+/// candidate whose effect step finds nothing better stays at its null value and reproduces the
+/// model without it bit for bit (the start is the first evaluation; only strict improvements move).
+
+#include "damper/diagnose/diagnose_types.h"
+#include "damper/model/effects.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace damper {
+
+/// A measured record with its split and regimes (possibly decimated for the fits).
+struct DiagnoseRecord {
+  BrfdTest test;
+  Segmentation seg;
+};
+
+/// Bases per record (LuGre from passive data, x'_k from the record) and the shared effects.
+struct ModelState {
+  std::vector<BrfdParams> bases;
+  ModelEffects effects;
+  BrfdParams params(std::size_t k) const {
+    BrfdParams p = bases[k];
+    p.effects = effects;
+    return p;
+  }
+};
+
+/// Every k-th sample of a record (split, regimes and spans mapped).
+DiagnoseRecord decimate(const DiagnoseRecord& r, std::size_t k);
+
+/// Model force over a whole record.
+std::vector<double> simulate(const BrfdParams& p, const BrfdTest& t);
+
+/// The parameters of a list of effects in unit coordinates [0, 1] (log scale where marked).
+struct FitSpace {
+  std::vector<const EffectSpec*> specs;
+  std::size_t dim() const;
+  ModelEffects apply(ModelEffects e, const std::vector<double>& u) const;
+  /// Unit coordinates of the effects in `e`; effects absent there start at their null value,
+  /// or at their typical value with use_start.
+  std::vector<double> unit_of(const ModelEffects& e, bool use_start = false) const;
+};
+
+/// Settings of fit_model().
+struct FitSettings {
+  BaseSource base = BaseSource::identify;
+  int effect_evals = 60;
+  int base_refit_evals = 100;
+  int iterations = 2;
+};
+
+/// Runs the fit procedure (file comment) from `start` on the samples with mask[k][i] != 0
+/// (records with an empty or all-zero mask are not simulated in the effect step). Iteration 0's
+/// effect step starts from the null values and from the typical values; later ones from the
+/// best so far. Returns the fitted state; *evaluations counts model replays.
+ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& start, const FitSpace& space,
+                     const std::vector<std::vector<std::uint8_t>>& mask, const FitSettings& settings,
+                     int* evaluations = nullptr);
+
+/// Re-identifies a record's LuGre parameters on its passive window with the effects in `start`
+/// (local LN_BOBYQA, `evals`; global stage skipped). Passive data only.
+LugreParams refit_base(const DiagnoseRecord& r, const BrfdParams& start, int evals, const IdentificationOptions& io);
+
+/// LuGre parameters shared by all records, identified on their passive windows with the effects
+/// on (model-updated.yaml's LuGre block in identify mode). Same search vector as identification.cc.
+LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model,
+                                const ModelEffects& e, int max_evals);
+
+/// Error metrics over the samples with mask[i] == want (RMSE, RMSE/std, RMSE/range).
+ErrorMetrics masked_error(const std::vector<double>& measured, const std::vector<double>& predicted,
+                          const std::vector<std::uint8_t>& mask, std::uint8_t want);
+
+/// Effective number of independent samples of a residual: n / (1 + 2 Σ ρ_k), the sum of its
+/// autocorrelation up to the first non-positive lag.
+double effective_sample_count(const std::vector<double>& residual);
+
+}  // namespace damper

@@ -1,0 +1,381 @@
+#include "damper/diagnose/diagnose_select.h"
+
+#include "damper/diagnose/diagnose_noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <random>
+#include <sstream>
+
+namespace damper {
+
+namespace {
+
+std::string fmt(double v, int prec = 3) {
+  std::ostringstream o;
+  o << std::setprecision(prec) << v;
+  return o.str();
+}
+
+// Parts of a record: the spans of its split from sample `from` on (each drum cycle / rest half).
+void add_parts(const DiagnoseRecord& r, std::size_t k, std::size_t from, bool heldout_only, std::vector<HeldOutPart>& parts) {
+  for (const Segmentation::Span& sp : r.seg.spans) {
+    if (sp.end <= sp.begin || sp.end <= from) continue;
+    if (heldout_only && sp.train) continue;
+    parts.push_back({k, std::max(sp.begin, from), std::min(sp.end, r.test.size())});
+  }
+}
+
+struct FoldPredictions {
+  std::vector<std::vector<double>> pred;  // per record (empty if the fold scores nothing there)
+};
+
+// Predictions of `state` on the records the fold scores.
+FoldPredictions predict_fold(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const ModelState& state) {
+  FoldPredictions out;
+  out.pred.resize(recs.size());
+  for (const HeldOutPart& p : fold.parts)
+    if (out.pred[p.record].empty()) out.pred[p.record] = simulate(state.params(p.record), recs[p.record].test);
+  return out;
+}
+
+double part_sse(const DiagnoseRecord& r, const std::vector<double>& pred, const HeldOutPart& p) {
+  double se = 0.0;
+  for (std::size_t i = p.begin; i < p.end; ++i) se += (pred[i] - r.test.force_kip[i]) * (pred[i] - r.test.force_kip[i]);
+  return se;
+}
+
+// Held-out residual energy per regime of a fold's predictions.
+RegimeEnergy fold_energy(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& fp,
+                         const SegmentationOptions& so) {
+  RegimeEnergy e;
+  std::vector<std::vector<std::uint8_t>> masks(recs.size());
+  for (const HeldOutPart& p : fold.parts) {
+    if (masks[p.record].empty()) masks[p.record].assign(recs[p.record].test.size(), 0);
+    for (std::size_t i = p.begin; i < p.end; ++i) masks[p.record][i] = 1;
+  }
+  for (std::size_t k = 0; k < recs.size(); ++k) {
+    if (masks[k].empty()) continue;
+    std::vector<double> res(fp.pred[k].size());
+    for (std::size_t i = 0; i < res.size(); ++i) res[i] = fp.pred[k][i] - recs[k].test.force_kip[i];
+    e += localize(res, recs[k].seg, recs[k].test.dt_s, so, &masks[k]);
+  }
+  return e;
+}
+
+// Physics signature: low-frequency held-out gain Σ(l_null² − l_cand²) on the samples of the
+// effect's own regimes (the actuators count as moving whatever the exclusive regime says) and on
+// the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0). The force
+// held after the excitation stops is inherited from the last stroke: it counts only for effects
+// acting at rest.
+void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
+                    const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, double own_all[2]) {
+  auto has = [&spec](const char* g) { return std::find(spec.regimes.begin(), spec.regimes.end(), g) != spec.regimes.end(); };
+  const bool at_rest = has("after_stop"), actuators = has("actuators");
+  double own = 0.0, other = 0.0;
+  for (const HeldOutPart& p : fold.parts) {
+    const DiagnoseRecord& r = recs[p.record];
+    std::vector<double> r0(r.test.size()), r1(r.test.size());
+    for (std::size_t i = 0; i < r0.size(); ++i) {
+      r0[i] = null_fp.pred[p.record][i] - r.test.force_kip[i];
+      r1[i] = fp.pred[p.record][i] - r.test.force_kip[i];
+    }
+    const std::vector<double> l0 = low_frequency_part(r0, r.test.dt_s, so), l1 = low_frequency_part(r1, r.test.dt_s, so);
+    for (std::size_t i = p.begin; i < p.end; ++i) {
+      const Regime g = r.seg.regime[i];
+      const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
+      const bool mine = moving || has(to_string(g).c_str());
+      if (!mine && !at_rest && g == Regime::after_stop) continue;
+      (mine ? own : other) += l0[i] * l0[i] - l1[i] * l1[i];
+    }
+  }
+  own_all[0] += std::max(own, 0.0);
+  own_all[1] += std::max(own, 0.0) + std::max(other, 0.0);
+}
+
+bool at_null(const EffectSpec& spec, const ModelEffects& e) {
+  if (!spec.present(e)) return true;
+  const std::vector<double> theta = spec.get(e);
+  for (std::size_t j = 0; j < theta.size(); ++j) {
+    const EffectParameter& p = spec.parameters[j];
+    const double scale = p.hi - p.lo;
+    if (std::abs(theta[j] - p.null_value) > 1e-6 * scale) return false;
+  }
+  return true;
+}
+
+// The gates of the file comment on a (possibly resampled) set of parts; weights[p] = multiplicity.
+struct GateResult {
+  bool passes = false;
+  double gain = 0.0, gain_share = 0.0, excess_share = 0.0;
+  int changed = 0, improved = 0;
+  std::string why;
+};
+
+GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const std::vector<std::size_t>& part_record,
+                 std::size_t records, double sigma2, const DiagnoseOptions& o, bool check_signature) {
+  GateResult g;
+  double null_sse = 0.0, n = 0.0;
+  std::vector<double> rec_gain(records, 0.0), rec_null(records, 0.0);
+  // A part counts as changed when its gain exceeds twice its noise sd and 5 % of the largest
+  // part gain (changes far smaller than where the effect acts are not its verdict).
+  double largest = 0.0;
+  for (std::size_t p = 0; p < c.part_gain_kip2.size(); ++p)
+    if (weights[p] != 0) largest = std::max(largest, std::abs(c.part_gain_kip2[p]));
+  for (std::size_t p = 0; p < c.part_gain_kip2.size(); ++p) {
+    if (weights[p] == 0) continue;
+    const double w = weights[p];
+    g.gain += w * c.part_gain_kip2[p];
+    null_sse += w * c.part_null_kip2[p];
+    n += w * static_cast<double>(c.part_samples[p]);
+    rec_gain[part_record[p]] += w * c.part_gain_kip2[p];
+    rec_null[part_record[p]] += w * c.part_null_kip2[p];
+    if (std::abs(c.part_gain_kip2[p]) > 2.0 * c.part_noise_kip2[p] && std::abs(c.part_gain_kip2[p]) > 0.05 * largest) {
+      g.changed += weights[p];
+      if (c.part_gain_kip2[p] > 0.0) g.improved += weights[p];
+    }
+  }
+  g.gain_share = null_sse > 0.0 ? g.gain / null_sse : 0.0;
+  const double excess = null_sse - n * sigma2;
+  g.excess_share = excess > 0.0 ? g.gain / excess : 0.0;
+  if (g.gain_share < o.min_improvement) {
+    g.why = "held-out gain " + fmt(100.0 * g.gain_share, 2) + "% < " + fmt(100.0 * o.min_improvement, 2) + "%";
+    return g;
+  }
+  if (!(excess > 0.0) || g.excess_share < o.min_excess_share) {
+    g.why = "removes " + fmt(100.0 * g.excess_share, 2) + "% of the residual above the noise floor (needs " +
+            fmt(100.0 * o.min_excess_share, 2) + "%)";
+    return g;
+  }
+  if (g.changed == 0 || static_cast<double>(g.improved) < o.consistency * static_cast<double>(g.changed)) {
+    g.why = "improves " + std::to_string(g.improved) + " of the " + std::to_string(g.changed) + " held-out parts it changes";
+    return g;
+  }
+  for (std::size_t k = 0; k < records; ++k) {
+    if (rec_null[k] > 0.0 && rec_gain[k] < -0.02 * rec_null[k]) {
+      g.why = "worse on held-out record #" + std::to_string(k + 1);
+      return g;
+    }
+  }
+  if (check_signature && c.signature_share < o.signature_share) {
+    g.why = "only " + fmt(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes";
+    return g;
+  }
+  g.passes = true;
+  g.why = "passes";
+  return g;
+}
+
+std::string regime_list(const std::vector<std::string>& r) {
+  std::string s;
+  for (const std::string& x : r) s += (s.empty() ? "" : "/") + x;
+  return s;
+}
+
+}  // namespace
+
+ValidationPlan make_validation_plan(const std::vector<DiagnoseRecord>& recs) {
+  ValidationPlan plan;
+  const std::size_t n = recs.size();
+  if (n >= 2) {
+    plan.description = "leave-one-record-out over " + std::to_string(n) +
+                       " records (each scored after its passive window, with effects fitted on the others)";
+    for (std::size_t f = 0; f < n; ++f) {
+      Fold fold;
+      for (std::size_t k = 0; k < n; ++k) fold.fit_mask.push_back(std::vector<std::uint8_t>(recs[k].test.size(), k == f ? 0 : 1));
+      add_parts(recs[f], f, recs[f].seg.passive_end, false, fold.parts);
+      plan.folds.push_back(std::move(fold));
+    }
+    for (std::size_t k = 0; k < n; ++k) plan.final_mask.push_back(std::vector<std::uint8_t>(recs[k].test.size(), 1));
+  } else {
+    plan.description = "held-out drum cycles of the single record (effects fitted on the training cycles)";
+    Fold fold;
+    for (const DiagnoseRecord& r : recs) fold.fit_mask.push_back(r.seg.train);
+    for (std::size_t k = 0; k < n; ++k) add_parts(recs[k], k, 0, true, fold.parts);
+    plan.folds.push_back(fold);
+    plan.final_mask = fold.fit_mask;
+  }
+  return plan;
+}
+
+RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const ValidationPlan& plan,
+                       const ModelState& current, const std::vector<const EffectSpec*>& added,
+                       const std::vector<const EffectSpec*>& todo, const DiagnoseOptions& o) {
+  RoundOutcome out;
+  out.next = current;
+  FitSettings fs;
+  fs.base = o.base;
+  fs.effect_evals = o.effect_evals;
+  fs.base_refit_evals = o.base_refit_evals;
+  fs.iterations = o.fit_iterations;
+  const FitSpace added_space{added};
+
+  // Stage A and the null model per fold; the residual of the null on the held-out parts.
+  std::vector<ModelState> stage_a, nulls;
+  std::vector<FoldPredictions> null_pred;
+  std::vector<std::size_t> part_record;
+  std::vector<std::vector<double>> null_res(recs.size());
+  std::vector<std::vector<std::uint8_t>> scored(recs.size());
+  for (const Fold& fold : plan.folds) {
+    FitSettings fa = fs;
+    fa.iterations = added.empty() ? 1 : fs.iterations;
+    stage_a.push_back(fit_model(recs, current, added_space, fold.fit_mask, fa));
+    nulls.push_back(fit_model(recs, stage_a.back(), FitSpace{}, fold.fit_mask, fs));
+    null_pred.push_back(predict_fold(recs, fold, nulls.back()));
+    for (const HeldOutPart& p : fold.parts) {
+      part_record.push_back(p.record);
+      const std::vector<double>& pr = null_pred.back().pred[p.record];
+      if (null_res[p.record].empty()) {
+        null_res[p.record].resize(pr.size());
+        for (std::size_t i = 0; i < pr.size(); ++i) null_res[p.record][i] = pr[i] - recs[p.record].test.force_kip[i];
+        scored[p.record].assign(pr.size(), 0);
+      }
+      for (std::size_t i = p.begin; i < p.end; ++i) scored[p.record][i] = 1;
+    }
+  }
+  std::vector<ResidualSample> samples;
+  for (std::size_t k = 0; k < recs.size(); ++k)
+    if (!null_res[k].empty()) samples.push_back({&null_res[k], &scored[k], &recs[k].seg, recs[k].test.dt_s});
+  out.noise = residual_structure(samples, o.segmentation);
+  const double sigma2 = out.noise.sigma_kip * out.noise.sigma_kip;
+  if (!out.noise.structured) {
+    out.stop_reason = "nothing significant is missing: the held-out residual is indistinguishable from noise (" +
+                      out.noise.summary + ")";
+    return out;
+  }
+  RegimeEnergy null_energy;
+  for (std::size_t f = 0; f < plan.folds.size(); ++f) null_energy += fold_energy(recs, plan.folds[f], null_pred[f], o.segmentation);
+
+  // Each candidate: same procedure from stage A with its parameters free.
+  std::vector<std::vector<FoldPredictions>> cand_pred(todo.size());
+  for (std::size_t c = 0; c < todo.size(); ++c) {
+    const EffectSpec* spec = todo[c];
+    CandidateScore s;
+    s.round = round;
+    s.effect = spec->name;
+    for (const EffectParameter& p : spec->parameters) s.parameter_names.push_back(p.name);
+    double sse0 = 0.0, sse1 = 0.0, n = 0.0;
+    double own_all[2] = {0.0, 0.0};
+    for (std::size_t f = 0; f < plan.folds.size(); ++f) {
+      const Fold& fold = plan.folds[f];
+      ModelState fit = fit_model(recs, stage_a[f], FitSpace{{spec}}, fold.fit_mask, fs, &s.evaluations);
+      const bool null_result = at_null(*spec, fit.effects);
+      FoldPredictions fp = null_result ? null_pred[f] : predict_fold(recs, fold, fit);
+      for (const HeldOutPart& p : fold.parts) {
+        const double a = part_sse(recs[p.record], null_pred[f].pred[p.record], p);
+        const double b = null_result ? a : part_sse(recs[p.record], fp.pred[p.record], p);
+        s.part_null_kip2.push_back(a);
+        s.part_gain_kip2.push_back(a - b);
+        s.part_samples.push_back(p.end - p.begin);
+        double dd = 0.0;
+        if (!null_result)
+          for (std::size_t i = p.begin; i < p.end; ++i) {
+            const double d = fp.pred[p.record][i] - null_pred[f].pred[p.record][i];
+            dd += d * d;
+          }
+        s.part_noise_kip2.push_back(2.0 * std::sqrt(sigma2 * dd));
+        sse0 += a;
+        sse1 += b;
+        n += static_cast<double>(p.end - p.begin);
+      }
+      s.heldout_energy += fold_energy(recs, fold, fp, o.segmentation);
+      signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, own_all);
+      cand_pred[c].push_back(std::move(fp));
+      if (plan.folds.size() == 1) s.theta = spec->present(fit.effects) ? spec->get(fit.effects) : std::vector<double>{};
+    }
+    s.heldout_rmse_null_kip = n > 0 ? std::sqrt(sse0 / n) : 0.0;
+    s.heldout_rmse_kip = n > 0 ? std::sqrt(sse1 / n) : 0.0;
+    s.parts_total = static_cast<int>(s.part_gain_kip2.size());
+    s.signature_share = own_all[1] > 0.0 ? own_all[0] / own_all[1] : 0.0;
+    const GateResult g = gates(s, std::vector<int>(s.part_gain_kip2.size(), 1), part_record, recs.size(), sigma2, o, true);
+    s.heldout_gain = g.gain_share;
+    s.excess_share = g.excess_share;
+    s.parts_changed = g.changed;
+    s.parts_improved = g.improved;
+    s.passes = g.passes;
+    s.verdict = g.why;
+    out.scores.push_back(s);
+  }
+
+  // Winner and bootstrap confidence over the held-out parts.
+  auto winner_of = [&](const std::vector<int>& w, bool full) {
+    int best = -1;
+    double best_gain = 0.0;
+    for (std::size_t c = 0; c < out.scores.size(); ++c) {
+      const GateResult g = full ? GateResult{out.scores[c].passes, 0, 0, 0, 0, 0, ""}
+                                : gates(out.scores[c], w, part_record, recs.size(), sigma2, o, true);
+      if (!g.passes) continue;
+      double gain = 0.0;
+      for (std::size_t p = 0; p < w.size(); ++p) gain += w[p] * out.scores[c].part_gain_kip2[p];
+      if (best < 0 || gain > best_gain) {
+        best = static_cast<int>(c);
+        best_gain = gain;
+      }
+    }
+    return best;
+  };
+  const std::size_t n_parts = part_record.size();
+  const int best = winner_of(std::vector<int>(n_parts, 1), true);
+  std::vector<int> chosen(out.scores.size(), 0);
+  std::mt19937 rng(o.seed + static_cast<unsigned>(round));
+  std::uniform_int_distribution<std::size_t> pick(0, n_parts ? n_parts - 1 : 0);
+  const int resamples = std::max(1, o.resamples);
+  for (int b = 0; b < resamples; ++b) {
+    std::vector<int> w(n_parts, 0);
+    for (std::size_t j = 0; j < n_parts; ++j) ++w[pick(rng)];
+    const int win = winner_of(w, false);
+    if (win >= 0) ++chosen[static_cast<std::size_t>(win)];
+  }
+  for (std::size_t c = 0; c < out.scores.size(); ++c)
+    out.scores[c].confidence = static_cast<double>(chosen[c]) / resamples;
+  if (best < 0) {
+    std::size_t top = 0;
+    for (std::size_t c = 1; c < out.scores.size(); ++c)
+      if (out.scores[c].heldout_gain > out.scores[top].heldout_gain) top = c;
+    out.stop_reason = out.scores.empty() ? "no candidate left"
+                                         : "no candidate passes on unseen data (best held-out gain: " + out.scores[top].effect +
+                                               ", " + out.scores[top].verdict + ")";
+    return out;
+  }
+  CandidateScore& w = out.scores[static_cast<std::size_t>(best)];
+  const EffectSpec& wspec = effect_spec(w.effect);
+  // Confusable effects that also pass: told apart part by part, or not.
+  for (std::size_t c = 0; c < out.scores.size(); ++c) {
+    const CandidateScore& other = out.scores[c];
+    if (static_cast<int>(c) == best || !other.passes) continue;
+    if (std::find(wspec.confusable.begin(), wspec.confusable.end(), other.effect) == wspec.confusable.end()) continue;
+    int differ = 0, better = 0;
+    for (std::size_t p = 0; p < n_parts; ++p) {
+      const double d = w.part_gain_kip2[p] - other.part_gain_kip2[p];
+      if (std::abs(d) <= 0.02 * w.part_null_kip2[p]) continue;
+      ++differ;
+      if (d > 0) ++better;
+    }
+    const bool apart = w.confidence >= o.confidence && differ > 0 && better >= o.consistency * differ;
+    out.notes.push_back(std::string(apart ? "told apart: " : "cannot tell apart: ") + w.effect + " (held-out gain " +
+                        fmt(100.0 * w.heldout_gain) + "%, chosen in " + fmt(100.0 * w.confidence) + "% of resamples) vs " +
+                        other.effect + " (" + fmt(100.0 * other.heldout_gain) + "%, " + fmt(100.0 * other.confidence) +
+                        "%): " + w.effect + " is better on " + std::to_string(better) + " of the " + std::to_string(differ) +
+                        " held-out parts where they differ; signatures " + regime_list(wspec.regimes) + " " +
+                        fmt(100.0 * w.signature_share) + "% vs " + regime_list(effect_spec(other.effect).regimes) + " " +
+                        fmt(100.0 * other.signature_share) + "%");
+  }
+  if (w.confidence < o.confidence) {
+    out.stop_reason = "best candidate " + w.effect + " passes on the held-out parts but is chosen in only " +
+                      fmt(100.0 * w.confidence) + "% of bootstrap resamples (needs " + fmt(100.0 * o.confidence) +
+                      "%): not named";
+    return out;
+  }
+  // Accepted: refit on the final mask (stage A, then the winner free).
+  w.accepted = true;
+  out.winner = best;
+  FitSettings fa = fs;
+  fa.iterations = added.empty() ? 1 : fs.iterations;
+  const ModelState a = fit_model(recs, current, added_space, plan.final_mask, fa);
+  out.next = fit_model(recs, a, FitSpace{{&wspec}}, plan.final_mask, fs, &w.evaluations);
+  w.theta = wspec.get(out.next.effects);
+  return out;
+}
+
+}  // namespace damper

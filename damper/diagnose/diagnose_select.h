@@ -1,0 +1,72 @@
+#pragma once
+/// @file diagnose_select.h
+/// Selection engine of `hybridsim diagnose` (docs/diagnose.md): decides on unseen data whether a
+/// candidate effect of the library (effects.h) is missing from the model.
+///
+/// Validation plan: with two or more records, leave-one-record-out (fold f fits on every other
+/// record and scores record f after its passive window); with one record, the held-out drum
+/// cycles of its split. The scored samples are cut into held-out PARTS (one per drum cycle /
+/// rest half), the units of the consistency test and of the bootstrap.
+///
+/// One round, per fold: stage A refits the effects already added (and the bases) on the fold's
+/// fitting samples; then the model without a candidate ("null") and each candidate get the same
+/// fit procedure from A (diagnose_fit.h), the candidate with its parameters free. Per held-out
+/// part p, g_p = SSE_null,p − SSE_cand,p. A candidate passes when
+///   (1) Σg / Σ SSE_null >= min_improvement and Σg >= min_excess_share · (Σ SSE_null − n σ²),
+///       σ the noise floor (diagnose_noise.h);
+///   (2) it improves >= consistency of the parts it changes (|g_p| > 2 % of SSE_null,p), and with
+///       several records no record gets materially worse;
+///   (3) >= signature_share of its held-out low-frequency gain sits in its own regimes
+///       (EffectSpec::regimes);
+/// the winner is the passing candidate with the largest Σg. Its confidence is the share of
+/// bootstrap resamples of the parts (with replacement) in which it is still the passing winner;
+/// it is added only with confidence >= options.confidence. Confusable effects (EffectSpec::
+/// confusable) that also pass are compared part by part and reported as told apart or not.
+/// Before any candidate, the residual of the refitted model is tested against the noise floor;
+/// when it is indistinguishable from noise the verdict is "nothing significant is missing".
+
+#include "damper/diagnose/diagnose_fit.h"
+
+#include <string>
+#include <vector>
+
+namespace damper {
+
+/// A scored unit of held-out samples [begin, end) of a record (fit-rate indices).
+struct HeldOutPart {
+  std::size_t record = 0, begin = 0, end = 0;
+};
+
+/// One fold of the validation plan.
+struct Fold {
+  std::vector<std::vector<std::uint8_t>> fit_mask;  ///< per record: samples the fits may use
+  std::vector<HeldOutPart> parts;                   ///< scored samples
+};
+
+/// Folds, the mask of the final fit after an effect is accepted, and a description.
+struct ValidationPlan {
+  std::vector<Fold> folds;
+  std::vector<std::vector<std::uint8_t>> final_mask;
+  std::string description;
+};
+
+/// Leave-one-record-out with >= 2 records, else held-out cycles (file comment).
+ValidationPlan make_validation_plan(const std::vector<DiagnoseRecord>& recs);
+
+/// What one round found.
+struct RoundOutcome {
+  NoiseReport noise;                    ///< residual of the refitted current model, held-out parts
+  std::vector<CandidateScore> scores;   ///< one per candidate tried (empty if nothing is missing)
+  int winner = -1;                      ///< index in scores of the accepted effect, -1: none
+  ModelState next;                      ///< the model with the winner, refitted on the final mask
+  std::vector<std::string> notes;       ///< evidence lines (confusable pairs, signatures)
+  std::string stop_reason;              ///< set when the round adds nothing
+};
+
+/// Runs one round of the selection from `current` (effects `added` already added by this run)
+/// over the candidates `todo`.
+RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const ValidationPlan& plan,
+                       const ModelState& current, const std::vector<const EffectSpec*>& added,
+                       const std::vector<const EffectSpec*>& todo, const DiagnoseOptions& options);
+
+}  // namespace damper

@@ -1,0 +1,141 @@
+#pragma once
+/// @file diagnose_types.h
+/// Options and results of `hybridsim diagnose` (docs/diagnose.md), shared by the workflow
+/// (diagnose.h), its fit/selection engine (diagnose_fit.h, diagnose_select.h) and its report
+/// (diagnose_report.h). Holding them here keeps the report from including the workflow.
+
+#include "damper/data/brfd_data.h"
+#include "damper/model/brfd_model.h"
+#include "damper/diagnose/diagnose_data.h"
+#include "damper/fit/identification.h"
+#include "damper/data/replay.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace damper {
+
+/// Where the base model's LuGre parameters come from.
+enum class BaseSource {
+  identify,  ///< identified on each record's passive window (default, as `damper predict`)
+  model,     ///< the --model file's parameters as they are (x'_k still from each record's t = 0)
+};
+
+/// Options of run_diagnose() (the CLI flags of `hybridsim diagnose`).
+struct DiagnoseOptions {
+  std::string model_path;                ///< --model: damper config YAML (may already hold effects)
+  std::vector<std::string> measured;     ///< --measured: files or folders (diagnose_data.h)
+  std::vector<BrfdTest> measured_tests;  ///< records in memory (benchmark, tests), after `measured`
+  std::string out_dir;                   ///< --out ("" = write nothing)
+  BaseSource base = BaseSource::identify;
+  std::vector<std::string> candidates;   ///< --effects: subset of the library (empty = all)
+  SegmentationOptions segmentation;
+  /// Centred moving average over the actuator position signals before use, s. 0 (default): as
+  /// measured, exactly what `damper predict` replays, so the written model reproduces "after".
+  double actuator_smoothing_s = 0.0;
+  /// Budget of the identification of each record's base on its passive window, for "before" and
+  /// "after" (window overwritten). The defaults are `damper predict`'s.
+  IdentificationOptions base_identification;
+  /// LN_BOBYQA evaluations of each base re-identification step inside a fit (identify mode). The
+  /// model without a candidate gets exactly the same base steps as the model with it.
+  int base_refit_evals = 100;
+  int effect_evals = 60;                 ///< LN_BOBYQA evaluations per start of an effect fit
+  int fit_iterations = 2;                ///< alternations effect step / base step per fit
+  /// Effect fits and scores run on records decimated to at least this rate (every k-th sample),
+  /// Hz; the before/after numbers use the full rate.
+  double fit_rate_hz = 256.0;
+  /// A candidate must remove at least this share of the held-out mean square residual of the
+  /// refitted model without it ...
+  double min_improvement = 0.05;
+  /// ... and at least this share of its excess over the noise floor (σ²) ...
+  double min_excess_share = 0.25;
+  /// ... improve at least this share of the held-out parts it changes (records / cycles) ...
+  double consistency = 0.8;
+  /// ... take at least this share of its held-out gain in its own regimes (physics signature) ...
+  double signature_share = 0.5;
+  /// ... and be chosen in at least this share of bootstrap resamples of the held-out parts.
+  double confidence = 0.8;
+  int resamples = 200;                   ///< bootstrap resamples per round
+  unsigned seed = 7;                     ///< bootstrap seed (reproducible verdicts)
+  int max_effects = 4;                   ///< at most this many effects are added
+  bool figures = true;                   ///< run gnuplot (needs out_dir)
+  BrfdReadOptions read;
+  std::function<void(const std::string&)> log;  ///< report lines (may be empty)
+};
+
+/// Fit and score of one candidate in one round of the selection.
+struct CandidateScore {
+  int round = 0;
+  std::string effect;
+  std::vector<std::string> parameter_names;
+  std::vector<double> theta;                 ///< fitted on all fitting data of the round
+  double heldout_rmse_null_kip = 0.0;        ///< refitted model without the candidate, held-out parts
+  double heldout_rmse_kip = 0.0;             ///< with the candidate, held-out parts
+  double heldout_gain = 0.0;                 ///< share of the held-out mean square removed (vs the null refit)
+  double excess_share = 0.0;                 ///< share of the held-out excess over σ² removed
+  int parts_total = 0, parts_changed = 0, parts_improved = 0;
+  double signature_share = 0.0;              ///< share of the held-out gain in its own regimes
+  double confidence = 0.0;                   ///< share of bootstrap resamples choosing it
+  std::vector<double> part_gain_kip2;        ///< per held-out part: SSE(null) − SSE(candidate), kip²
+  std::vector<double> part_null_kip2;        ///< per held-out part: SSE(null), kip²
+  std::vector<std::size_t> part_samples;
+  std::vector<double> part_noise_kip2;       ///< per part: noise sd of the gain, 2 σ √Σ(Δprediction)², kip²
+  RegimeEnergy heldout_energy;               ///< held-out residual energy per regime with it
+  bool passes = false;                       ///< passes every gate except confidence
+  std::string verdict;                       ///< why it passes / fails, one phrase
+  bool accepted = false;
+  int evaluations = 0;
+};
+
+/// Noise floor and residual structure of a model's residual (diagnose_noise.h).
+struct NoiseReport {
+  double sigma_kip = 0.0;        ///< measurement-noise estimate (high-frequency residual, MAD)
+  double mse_kip2 = 0.0;         ///< mean square residual (held-out samples)
+  double excess_ratio = 0.0;     ///< mse / σ²
+  double lowfreq_ratio = 0.0;    ///< low-frequency residual power / what white noise at σ gives
+  double lowfreq_limit = 0.0;    ///< 3-sigma limit of that ratio under white noise
+  double lag_autocorrelation = 0.0;  ///< autocorrelation of the residual at the 0.1 s lag
+  double autocorrelation_limit = 0.0;  ///< 3/√n
+  std::vector<std::string> significant_regimes;  ///< regimes whose low-frequency residual exceeds noise
+  bool structured = true;        ///< false: indistinguishable from noise
+  std::string summary;           ///< one line
+};
+
+/// One measured record in the report.
+struct RecordReport {
+  std::string name, path;
+  double dt_s = 0.0;
+  double passive_end_s = 0.0;
+  double train_s = 0.0, heldout_s = 0.0;
+  BrfdParams base_params;   ///< base before any effect (passive data)
+  BrfdParams final_params;  ///< base (re-identified on passive data with the effects) + effects
+  ErrorMetrics before, after;                  ///< whole record
+  ErrorMetrics before_heldout, after_heldout;  ///< held-out samples only
+  ErrorMetrics updated_config;                 ///< model-updated.yaml's LuGre block as is, whole record
+  RegimeEnergy energy_before, energy_after;
+  std::vector<double> time_s, disp_in, vel_in_per_s, act1_in, act2_in, measured_kip, model_before_kip,
+      model_after_kip;
+  Segmentation segmentation;
+  std::string csv_path, png_path;
+};
+
+/// Everything run_diagnose() found.
+struct DiagnoseResult {
+  std::vector<RecordReport> records;
+  std::vector<CandidateScore> candidates;  ///< all rounds
+  std::vector<NoiseReport> noise;          ///< per round: the current model's residual
+  ModelEffects initial_effects;            ///< effects already in the --model file
+  ModelEffects effects;                    ///< effects of the updated model
+  std::vector<std::string> added;          ///< effects added by this run, in order
+  std::vector<double> added_confidence;    ///< bootstrap confidence of each added effect
+  std::vector<std::string> notes;          ///< indistinguishable pairs, reverted additions, ...
+  std::string validation;                  ///< "leave-one-record-out (N records)" or "held-out cycles"
+  std::string stop_reason;
+  double nrmse_before_mean = 0.0, nrmse_after_mean = 0.0, nrmse_after_max = 0.0;
+  BrfdParams updated_params;               ///< what model-updated.yaml holds
+  std::string updated_config_path, report_path, gap_png_path;
+  std::vector<ResidualWindow> top_windows; ///< where the residual concentrates (before)
+};
+
+}  // namespace damper
