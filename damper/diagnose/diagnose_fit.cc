@@ -104,11 +104,13 @@ std::vector<double> simulate(const BrfdParams& p, const BrfdTest& t) { return re
 namespace {
 
 double to_value(const EffectParameter& p, double u) {
+  if (!(p.hi > p.lo)) return p.lo;  // a pinned parameter
   u = std::clamp(u, 0.0, 1.0);
   if (p.log_scale) return std::pow(10.0, std::log10(p.lo) + u * (std::log10(p.hi) - std::log10(p.lo)));
   return p.lo + u * (p.hi - p.lo);
 }
 double to_unit(const EffectParameter& p, double v) {
+  if (!(p.hi > p.lo)) return 0.0;  // a pinned parameter
   v = std::clamp(v, p.lo, p.hi);
   if (p.log_scale) return (std::log10(v) - std::log10(p.lo)) / (std::log10(p.hi) - std::log10(p.lo));
   return (v - p.lo) / (p.hi - p.lo);
@@ -255,7 +257,6 @@ ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& 
       }
       bobyqa(obj, u0, settings.effect_evals);
       state.effects = space.apply(state.effects, obj.best_u);
-      if (std::getenv("DIAGNOSE_DEBUG")) std::fprintf(stderr, "fit it=%d dim=%zu evals=%d best=%g u0=%g\n", it, space.dim(), obj.evaluations, obj.best, obj.best_u.empty() ? -1.0 : obj.best_u[0]);
       evals += obj.evaluations;
     }
     if (settings.base == BaseSource::identify && settings.base_refit_evals > 0) {

@@ -1,6 +1,7 @@
 // `hybridsim diagnose` as a user runs it: a synthetic record with hidden backlash, the model
 // without it; the last line, the updated config (loads with the damper loader and holds the
 // effect), the report and the figures; a bad data file gives exit code 1 and a clear message.
+#include "damper/diagnose/diagnose_bench.h"
 #include "damper/model/brfd_config.h"
 #include "run_process.h"
 #include "synthetic.h"
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 #include <regex>
 
 namespace {
@@ -18,29 +20,70 @@ using test_support::read_text;
 using test_support::run_process;
 using test_support::write_text;
 
-TEST(DiagnoseCli, NamesHiddenBacklashAndWritesTheUpdatedModel) {
+// Two records with hidden backlash, diagnosed from the model without it by the default path (bases
+// identified on the passive windows). The written model-updated.yaml reproduces the printed
+// "after" NRMSE of each record with `hybridsim damper predict` (the command named in the file).
+TEST(DiagnoseCli, NamesHiddenBacklashAndTheWrittenModelReproducesTheReport) {
   const std::string dir = fresh_temp_dir("diagnose_cli");
-  damper::BrfdParams truth = diagnose_test::synthetic_base();
-  write_text(dir + "/model.yaml", damper::brfd_params_to_yaml(truth));
-  truth.effects.backlash = damper::BacklashEffect{0.05};
-  diagnose_test::SyntheticOptions so;
-  so.rate_hz = 256.0;
-  diagnose_test::write_json(diagnose_test::make_record(truth, so), dir + "/hidden-backlash.json");
+  const damper::BrfdParams base = damper::bench_base_model();
+  write_text(dir + "/model.yaml", damper::brfd_params_to_yaml(base));
+  damper::BrfdParams truth = base;
+  truth.effects.backlash = damper::BacklashEffect{0.06, 0.0, 1.0};
+  std::vector<std::string> files;
+  unsigned seed = 21;
+  for (damper::BrfdTest t : damper::bench_drives(base, 256.0)) {
+    damper::BrfdParams p = truth;
+    p.semiactive.actuator1_initial_in = t.actuator1_in[0];
+    p.semiactive.actuator2_initial_in = t.actuator2_in[0];
+    damper::BrfdModel m(p);
+    std::mt19937 rng(seed++);
+    std::normal_distribution<double> noise(0.0, 0.03);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const damper::DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+      t.force_kip.push_back((i == 0 ? m.force_kip(0.0, in) : m.step(in, t.dt_s)) + noise(rng));
+    }
+    files.push_back(dir + "/" + std::filesystem::path(t.path).filename().string());
+    diagnose_test::write_json(t, files.back());
+  }
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "--model", dir + "/model.yaml",
-                              "--measured", dir + "/hidden-backlash.json", "--out", dir + "/out", "--base", "model"});
+                              "--measured", files[0], files[1], "--out", dir + "/out"});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::regex last(
-      "effects=backlash nrmse_before=[0-9.e-]+ nrmse_after=[0-9.e-]+ nrmse_after_max=[0-9.e-]+\n$");
+      "confidence: backlash=[0-9.]+ [^\n]*\neffects=backlash nrmse_before=[0-9.e-]+ nrmse_after=[0-9.e-]+ "
+      "nrmse_after_max=[0-9.e-]+\n$");
   EXPECT_TRUE(std::regex_search(r.out, last)) << r.out;
   EXPECT_NE(r.out.find("== Where the model disagrees"), std::string::npos);
-  EXPECT_NE(r.out.find("winner: backlash"), std::string::npos);
+  EXPECT_NE(r.out.find("validation: leave-one-record-out over 2 records"), std::string::npos);
+  EXPECT_NE(r.out.find("added backlash"), std::string::npos);
+  const std::string yaml = read_text(dir + "/out/model-updated.yaml");
   const damper::BrfdParams updated = damper::load_brfd_params(dir + "/out/model-updated.yaml");
   ASSERT_TRUE(updated.effects.backlash.has_value());
-  EXPECT_NEAR(updated.effects.backlash->slack_in, 0.05, 0.01);
+  EXPECT_NEAR(updated.effects.backlash->slack_in, 0.06, 0.02);
+  EXPECT_NE(yaml.find("re-identified on its passive window"), std::string::npos) << yaml;
+  // The file names the predict command per record and the NRMSE it must give.
+  for (const std::string& f : files) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(yaml, m, std::regex("--test " + f + " *# nrmse=([0-9.]+)"))) << yaml;
+    const double printed = std::stod(m[1].str());
+    const auto p = run_process({test_paths::bin_dir() + "/hybridsim", "damper", "predict", "--config",
+                                dir + "/out/model-updated.yaml", "--test", f});
+    ASSERT_EQ(p.exit_code, 0) << p.err << p.out;
+    std::smatch q;
+    ASSERT_TRUE(std::regex_search(p.out, q, std::regex("(^|\\n)nrmse=([0-9.e-]+) rmse_kip=[^\\n]*\\n?$"))) << p.out;
+    EXPECT_NEAR(std::stod(q[2].str()), printed, 1e-4) << f;  // the file prints 4 decimals
+  }
   EXPECT_FALSE(read_text(dir + "/out/report.txt").empty());
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/gap.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/out/records/hidden-backlash.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/records/driveA.png"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/candidates.csv"));
+}
+
+// `hybridsim diagnose bench` runs (one case) and ends with its summary line.
+TEST(DiagnoseCli, BenchPrintsItsSummaryLine) {
+  const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "bench", "--quick", "--only", "none/"});
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("confusion matrix"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("trials=1 correct=1 wrong=0 false_positive=0\n$"))) << r.out;
 }
 
 TEST(DiagnoseCli, BadDataIsAUserError) {

@@ -1,8 +1,10 @@
-// diagnose on the real semi-active tests of ../shared/data/brfd/semiactive (skipped with a message
-// when absent): base LuGre identified on each test's passive window only (before the electric
-// actuators first move), effects fitted on training drum cycles. Reports what it finds and the
-// NRMSE before/after per test; fails if the workflow stops improving the model.
-// Smaller optimizer budgets than the CLI defaults, to keep the test short.
+// diagnose on the real tests of ../shared/data/brfd (skipped with a message when absent): the six
+// semi-active tests (leave-one-record-out over six records) and the two earthquake profiles
+// (passive, 36 lb; leave-one-record-out over two). Base LuGre identified on each record's passive
+// window only. Smaller optimizer budgets than the CLI defaults (CI-sized); the figures of the
+// full-budget runs are in docs/diagnose.md. The verdicts are printed; the test fails if the gap
+// grows, if a named effect did not beat the refitted model without it on held-out records, or if
+// the semi-active records are not the paper's model's NRMSE of about 0.2 before.
 #include "damper/diagnose/diagnose.h"
 #include "test_paths.h"
 
@@ -14,38 +16,51 @@
 namespace damper {
 namespace {
 
-TEST(DiagnoseRealData, SemiActiveTests) {
-  const std::string data = test_paths::shared_dir() + "/data/brfd/semiactive";
-  if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is absent: real-data diagnose not run";
+DiagnoseResult diagnose_folder(const std::string& folder, const std::string& config, const std::string& out) {
   DiagnoseOptions o;
-  o.model_path = test_paths::source_dir() + "/configs/brfd-semiactive.yaml";
-  o.measured = {data};
-  o.out_dir = (std::filesystem::temp_directory_path() / "diagnose_real_test").string();
+  o.model_path = test_paths::source_dir() + "/configs/" + config;
+  o.measured = {folder};
+  o.out_dir = (std::filesystem::temp_directory_path() / out).string();
   o.base = BaseSource::identify;
   o.figures = false;
   o.base_identification.global_runs = 1;
-  o.base_identification.global_max_evals = 2000;
-  o.base_identification.local_max_evals = 1000;
-  o.base_refit_evals = 80;
-  o.effect_evals = 40;
-  o.polish_evals = 40;
+  o.base_identification.global_max_evals = 1500;
+  o.base_identification.local_max_evals = 500;
+  o.base_refit_evals = 40;
+  o.effect_evals = 30;
+  o.fit_iterations = 1;
   o.fit_rate_hz = 128.0;
-  o.max_effects = 3;
+  o.max_effects = 2;
   const DiagnoseResult r = run_diagnose(o);
-  std::cout << "real semi-active tests, effects added in order:";
-  for (const std::string& e : r.added) std::cout << " " << e;
-  std::cout << "\n  test                       NRMSE before  after   (held-out before  after)\n";
-  for (const RecordReport& rec : r.records) {
+  std::cout << folder << ":\n  test                       NRMSE before  after   (held-out before  after)\n";
+  for (const RecordReport& rec : r.records)
     std::cout << "  " << rec.name << "  " << rec.before.nrmse_std << "  " << rec.after.nrmse_std << "   ("
               << rec.before_heldout.nrmse_std << "  " << rec.after_heldout.nrmse_std << ")\n";
-    EXPECT_LT(rec.after.nrmse_std, rec.before.nrmse_std) << rec.name;
-    EXPECT_LT(rec.after_heldout.nrmse_std, rec.before_heldout.nrmse_std) << rec.name;
-  }
-  std::cout << diagnose_final_line(r) << "\n";
+  for (const std::string& n : r.notes) std::cout << "  " << n << "\n";
+  std::cout << "  stop: " << r.stop_reason << "\n" << diagnose_confidence_line(r) << "\n" << diagnose_final_line(r) << "\n";
+  EXPECT_LE(r.nrmse_after_mean, r.nrmse_before_mean + 1e-12);
+  for (const CandidateScore& c : r.candidates)
+    if (c.accepted) {
+      EXPECT_LT(c.heldout_rmse_kip, c.heldout_rmse_null_kip) << c.effect;
+      EXPECT_GE(c.confidence, 0.8) << c.effect;
+    }
+  return r;
+}
+
+TEST(DiagnoseRealData, SemiActiveTests) {
+  const std::string data = test_paths::shared_dir() + "/data/brfd/semiactive";
+  if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is absent: real-data diagnose not run";
+  const DiagnoseResult r = diagnose_folder(data, "brfd-semiactive.yaml", "diagnose_real_semiactive");
   ASSERT_EQ(r.records.size(), 6u);
   EXPECT_GT(r.nrmse_before_mean, 0.17);  // the paper's model: about 0.2
-  EXPECT_LT(r.nrmse_after_mean, 0.16);
-  EXPECT_GE(r.added.size(), 2u);
+  EXPECT_LT(r.nrmse_before_mean, 0.23);
+}
+
+TEST(DiagnoseRealData, EarthquakeProfiles) {
+  const std::string data = test_paths::shared_dir() + "/data/brfd/earthquake-profiles";
+  if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is absent: real-data diagnose not run";
+  const DiagnoseResult r = diagnose_folder(data, "brfd-default.yaml", "diagnose_real_earthquake");
+  ASSERT_EQ(r.records.size(), 2u);
 }
 
 }  // namespace

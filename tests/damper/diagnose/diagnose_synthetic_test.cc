@@ -1,89 +1,149 @@
-// The whole diagnose workflow on synthetic records with a hidden effect: "measured" data made by
-// the model itself plus one effect of the library (0.5 Hz, 1 in ramped drum sinusoid, actuator
-// motions, rest at the end, white noise 0.05 kip); starting from the model without the effect
-// (base = the model file as is), the workflow must name that effect first and at least halve the
-// gap (NRMSE). With no hidden effect it must report effects=none.
-#include "damper/model/brfd_config.h"
+// The selection engine and the whole workflow on synthetic records (the benchmark's generator,
+// damper/diagnose/diagnose_bench.h: two 0.5 Hz ramped drum sinusoids with actuator moves, 2 s at
+// rest, white force noise):
+//  - a candidate pinned at its null value never wins (every part's gain is exactly 0);
+//  - data of the model itself plus noise: the verdict is none and the gap does not grow, from the
+//    exact base (--base model) and from bases identified on the passive windows (--base identify,
+//    the path where the old workflow credited the base refit to a candidate);
+//  - the gap never grows when an effect is added, and every added effect beat the model without it
+//    (same refit) on held-out data;
+//  - the CI subset of `hybridsim diagnose bench` (library effects, shapes that are not library
+//    formulas, none): at most one miss, no false positive.
 #include "damper/diagnose/diagnose.h"
-#include "synthetic.h"
+#include "damper/diagnose/diagnose_bench.h"
+#include "damper/diagnose/diagnose_select.h"
+#include "damper/model/brfd_config.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <random>
 
 namespace damper {
 namespace {
 
-using diagnose_test::make_record;
-using diagnose_test::synthetic_base;
-using diagnose_test::write_json;
+// Two noisy records of `truth` on the benchmark drives (256 Hz: CI-sized).
+std::vector<BrfdTest> records_of(const BrfdParams& truth, double noise_kip, unsigned seed) {
+  std::vector<BrfdTest> recs = bench_drives(bench_base_model(), 256.0);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> nd(0.0, noise_kip);
+  for (BrfdTest& t : recs) {
+    BrfdParams p = truth;
+    p.semiactive.actuator1_initial_in = t.actuator1_in[0];
+    p.semiactive.actuator2_initial_in = t.actuator2_in[0];
+    BrfdModel m(p);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+      t.force_kip.push_back((i == 0 ? m.force_kip(0.0, in) : m.step(in, t.dt_s)) + nd(rng));
+    }
+  }
+  return recs;
+}
 
-struct Hidden {
-  std::string effect;
-  std::vector<double> theta;
-};
-void PrintTo(const Hidden& h, std::ostream* os) { *os << (h.effect.empty() ? "none" : h.effect); }
+std::string model_file(const std::string& name) {
+  const std::string path = (std::filesystem::temp_directory_path() / ("diagnose_synth_" + name + ".yaml")).string();
+  std::ofstream(path) << brfd_params_to_yaml(bench_base_model());
+  return path;
+}
 
-DiagnoseResult diagnose_hidden(const Hidden& h, bool figures = false) {
-  const std::string dir = (std::filesystem::temp_directory_path() / ("diagnose_hidden_" + (h.effect.empty() ? std::string("none") : h.effect))).string();
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const BrfdParams base = synthetic_base();
-  BrfdParams truth = base;
-  if (!h.effect.empty()) effect_spec(h.effect).set(truth.effects, h.theta);
-  write_json(make_record(truth), dir + "/synthetic.json");
-  std::ofstream(dir + "/model.yaml") << brfd_params_to_yaml(base);
+DiagnoseOptions options_for(const std::vector<BrfdTest>& recs, BaseSource base) {
   DiagnoseOptions o;
-  o.model_path = dir + "/model.yaml";
-  o.measured = {dir + "/synthetic.json"};
-  o.out_dir = dir + "/out";
-  o.base = BaseSource::model;
-  o.figures = figures;
-  const DiagnoseResult r = run_diagnose(o);
-  std::cout << "[hidden " << (h.effect.empty() ? "none" : h.effect) << "] " << diagnose_final_line(r) << "\n";
-  for (const CandidateScore& c : r.candidates) {
-    if (!c.accepted) continue;
-    std::cout << "  added " << c.effect << ":";
-    for (std::size_t k = 0; k < c.theta.size(); ++k) std::cout << " " << c.parameter_names[k] << "=" << c.theta[k];
-    std::cout << " (held-out RMSE -" << 100 * c.heldout_gain << "%, dBIC " << c.delta_bic << ")\n";
-  }
-  return r;
+  o.model_path = model_file(base == BaseSource::model ? "model" : "identify");
+  o.measured_tests = recs;
+  o.base = base;
+  o.figures = false;
+  o.max_effects = 2;
+  o.base_identification.global_runs = 1;
+  o.base_identification.global_max_evals = 1000;
+  o.base_identification.local_max_evals = 400;
+  o.base_refit_evals = 50;
+  return o;
 }
 
-class HiddenEffect : public ::testing::TestWithParam<Hidden> {};
+void check_gap_never_grows(const DiagnoseResult& r) {
+  EXPECT_LE(r.nrmse_after_mean, r.nrmse_before_mean + 1e-12) << diagnose_final_line(r);
+  for (const CandidateScore& c : r.candidates)
+    if (c.accepted) EXPECT_LT(c.heldout_rmse_kip, c.heldout_rmse_null_kip) << c.effect;
+}
 
-TEST_P(HiddenEffect, IsNamedAndTheGapAtLeastHalves) {
-  const Hidden h = GetParam();
-  const DiagnoseResult r = diagnose_hidden(h, h.effect == "backlash");
-  ASSERT_FALSE(r.added.empty()) << "nothing named for hidden " << h.effect;
-  EXPECT_EQ(r.added.front(), h.effect);
-  EXPECT_LE(r.added.size(), 2u) << "spurious extra effects";
-  EXPECT_LE(r.nrmse_after_mean, 0.5 * r.nrmse_before_mean);
-  // The fitted parameters of the named effect are close to the hidden ones.
-  const std::vector<double> fitted = effect_spec(h.effect).get(r.effects);
-  const std::vector<EffectParameter>& params = effect_spec(h.effect).parameters;
-  for (std::size_t k = 0; k < fitted.size(); ++k) {
-    const double range = params[k].hi - params[k].lo;
-    if (params[k].log_scale) continue;  // a settling time: checked through the gap
-    EXPECT_NEAR(fitted[k], h.theta[k], 0.2 * std::abs(h.theta[k]) + 0.05 * range) << params[k].name;
+TEST(DiagnoseSelection, CandidatePinnedAtItsNullValueNeverWins) {
+  // Hidden backlash and actuator lag: plenty to explain, but every candidate is pinned (bounds
+  // lo = hi = null value), so whatever the optimizer does it reproduces the refitted null model.
+  BrfdParams truth = bench_base_model();
+  truth.effects.backlash = BacklashEffect{0.06, 0.0, 1.0};
+  truth.effects.actuator_lag = ActuatorLagEffect{0.15, 0.0, 1.0};
+  std::vector<DiagnoseRecord> recs;
+  for (const BrfdTest& t : records_of(truth, 0.03, 5)) recs.push_back({t, segment_record(t)});
+  std::vector<EffectSpec> pinned = effect_library();
+  std::vector<const EffectSpec*> todo;
+  for (EffectSpec& s : pinned) {
+    for (EffectParameter& p : s.parameters) p.lo = p.hi = p.start = p.null_value;
+    todo.push_back(&s);
+  }
+  ModelState start;
+  for (const DiagnoseRecord& r : recs) {
+    BrfdParams b = bench_base_model();
+    b.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
+    b.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
+    start.bases.push_back(b);
+  }
+  for (BaseSource base : {BaseSource::model, BaseSource::identify}) {
+    DiagnoseOptions o;
+    o.base = base;
+    o.effect_evals = 20;
+    o.base_refit_evals = 30;
+    const RoundOutcome out = run_round(1, recs, make_validation_plan(recs), start, {}, todo, o);
+    EXPECT_TRUE(out.noise.structured);
+    ASSERT_EQ(out.scores.size(), todo.size());
+    EXPECT_EQ(out.winner, -1);
+    for (const CandidateScore& c : out.scores) {
+      EXPECT_FALSE(c.passes) << c.effect;
+      EXPECT_EQ(c.confidence, 0.0) << c.effect;
+      for (double g : c.part_gain_kip2) EXPECT_EQ(g, 0.0) << c.effect;
+    }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Library, HiddenEffect,
-    ::testing::Values(Hidden{"backlash", {0.05}}, Hidden{"residual_static", {0.4, 0.15}},
-                      Hidden{"actuator_lag", {0.15}}, Hidden{"asymmetry", {0.15, 0.3}},
-                      Hidden{"velocity", {1.0, 0.25}}, Hidden{"pretension", {1.0, 0.8}},
-                      Hidden{"self_energizing", {-0.2, 0.15}}, Hidden{"transition_shape", {4.0}}),
-    [](const ::testing::TestParamInfo<Hidden>& info) { return info.param.effect; });
+TEST(DiagnoseSelection, ModelPlusNoiseIsNoneAndTheGapDoesNotGrow) {
+  for (BaseSource base : {BaseSource::model, BaseSource::identify}) {
+    const DiagnoseResult r = run_diagnose(options_for(records_of(bench_base_model(), 0.05, 3), base));
+    std::cout << (base == BaseSource::model ? "[base model] " : "[base identify] ") << diagnose_final_line(r) << "\n  "
+              << r.stop_reason << "\n";
+    EXPECT_TRUE(r.added.empty()) << diagnose_final_line(r);
+    EXPECT_EQ(diagnose_final_line(r).rfind("effects=none ", 0), 0u);
+    EXPECT_EQ(diagnose_confidence_line(r).rfind("confidence: none (", 0), 0u) << diagnose_confidence_line(r);
+    check_gap_never_grows(r);
+  }
+}
 
-TEST(NoHiddenEffect, ReportsThatNothingSignificantIsMissing) {
-  const DiagnoseResult r = diagnose_hidden(Hidden{"", {}});
-  EXPECT_TRUE(r.added.empty());
-  EXPECT_EQ(diagnose_final_line(r).rfind("effects=none ", 0), 0u) << diagnose_final_line(r);
-  EXPECT_NEAR(r.nrmse_after_mean, r.nrmse_before_mean, 1e-12);
+TEST(DiagnoseSelection, GapNeverGrowsWhenAnEffectIsAdded) {
+  BrfdParams truth = bench_base_model();
+  truth.effects.residual_static = ResidualStaticEffect{};
+  truth.effects.residual_static->ratio = 0.5;
+  truth.effects.residual_static->time_constant_s = 0.2;
+  for (BaseSource base : {BaseSource::model, BaseSource::identify}) {
+    const DiagnoseResult r = run_diagnose(options_for(records_of(truth, 0.03, 9), base));
+    std::cout << diagnose_confidence_line(r) << "\n" << diagnose_final_line(r) << "\n";
+    ASSERT_FALSE(r.added.empty());
+    EXPECT_EQ(r.added.front(), "residual_static");
+    EXPECT_GE(r.added_confidence.front(), 0.8);
+    check_gap_never_grows(r);
+    EXPECT_LT(r.nrmse_after_mean, 0.5 * r.nrmse_before_mean);
+  }
+}
+
+TEST(DiagnoseBench, CiSubsetIsCorrectWithoutFalsePositives) {
+  BenchOptions bo;
+  bo.quick = true;
+  bo.log = [](const std::string& s) { std::cout << s << "\n"; };
+  const BenchResult r = run_diagnose_bench(bo);
+  EXPECT_EQ(r.trials.size(), 6u);
+  EXPECT_EQ(r.false_positive, 0);
+  // Known miss (docs/diagnose.md): the weight-law backlash (force cut to zero within 0.01 in of a
+  // reversal) is beyond the library's dead-zone spring from the exact base; at most that one.
+  EXPECT_GE(r.correct, static_cast<int>(r.trials.size()) - 1) << bench_final_line(r);
 }
 
 }  // namespace
