@@ -3,6 +3,7 @@
 #include "damper/model/brfd_config.h"
 #include "damper/diagnose/diagnose.h"
 #include "damper/model/effects.h"
+#include "damper/synthetic/hidden_shapes.h"
 
 #include <chrono>
 #include <cmath>
@@ -276,6 +277,66 @@ std::vector<BenchCase> bench_cases(bool quick) {
   return c;
 }
 
+namespace {
+
+// The paper's semi-active model as in configs/brfd-semiactive.yaml (the base of damper/synthetic).
+BrfdParams paper_semiactive_model() {
+  BrfdParams p;
+  p.kind = DamperKind::semiactive;
+  p.lugre.sigma0_kip_per_in = 15.36;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.5;
+  p.lugre.fs_fwd_kip = 7.116;
+  p.lugre.fs_bwd_kip = 3.760;
+  p.lugre.fc_fwd_kip = 2.648;
+  p.lugre.fc_bwd_kip = 1.253;
+  p.lugre.vs_in_per_s = 1.3;
+  p.semiactive.actuator1_initial_in = 0.655;
+  p.semiactive.actuator2_initial_in = 0.8559;
+  return p;
+}
+
+std::string library_family(const std::string& label) {
+  if (label == "displacement_friction") return "self_energizing";
+  if (label == "velocity_friction" || label == "viscous") return "velocity";
+  return label;
+}
+
+}  // namespace
+
+std::vector<BenchCase> hidden_shape_cases(bool quick) {
+  namespace ds = synthetic;
+  std::vector<BenchCase> out;
+  const BrfdParams base = paper_semiactive_model();
+  for (ds::HiddenShape shape : ds::all_hidden_shapes()) {
+    for (double strength : {0.5, 1.0}) {
+      if (shape == ds::HiddenShape::none && strength != 1.0) continue;
+      if (quick && strength != 1.0) continue;
+      BenchCase c;
+      c.name = "hidden:" + ds::to_string(shape) + (shape == ds::HiddenShape::none ? "" : strength == 1.0 ? "/strong" : "/weak");
+      c.family = library_family(ds::effect_family(shape));
+      c.base = base;
+      c.records = [shape, strength, base](unsigned seed, double noise) {
+        std::vector<std::pair<BrfdTest, std::vector<double>>> recs;
+        for (int test : {1, 4}) {
+          ds::SyntheticSpec spec;
+          spec.harmonic.moves = ds::paper_harmonic_moves(test);
+          spec.effect.shape = shape;
+          spec.effect.strength_scale = strength;
+          spec.noise_std_kip = noise;
+          spec.seed = seed + static_cast<unsigned>(test);
+          spec.name = "hidden_test" + std::to_string(test);
+          ds::SyntheticTest g = ds::generate_synthetic_test(base, spec);
+          recs.emplace_back(std::move(g.test), std::move(g.clean_force_kip));
+        }
+        return recs;
+      };
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
 std::string bench_final_line(const BenchResult& r) {
   std::ostringstream o;
   o << "trials=" << r.trials.size() << " correct=" << r.correct << " wrong=" << r.wrong
@@ -290,16 +351,17 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
   BenchResult res;
   const BrfdParams base = bench_base_model();
   const std::vector<BrfdTest> drives = bench_drives(base, 512.0);
-  std::vector<BenchCase> cases = bench_cases(bo.quick);
+  std::vector<BenchCase> cases;
+  if (!bo.only_hidden_shapes) cases = bench_cases(bo.quick);
+  if (bo.hidden_shapes || bo.only_hidden_shapes) {
+    const std::vector<BenchCase> h = hidden_shape_cases(bo.quick);
+    cases.insert(cases.end(), h.begin(), h.end());
+  }
   cases.insert(cases.end(), bo.extra.begin(), bo.extra.end());
   const std::vector<double> noise = bo.quick ? std::vector<double>{0.05} : bo.noise_kip;
   const int seeds = bo.quick ? 1 : bo.seeds;
   const std::string model_path =
       (std::filesystem::temp_directory_path() / ("diagnose-bench-base-" + std::to_string(::getpid()) + ".yaml")).string();
-  {
-    std::ofstream f(model_path);
-    f << brfd_params_to_yaml(base);
-  }
   std::ofstream csv;
   if (!bo.out_dir.empty()) {
     std::filesystem::create_directories(bo.out_dir);
@@ -315,14 +377,26 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
       for (int s = 0; s < seeds; ++s) {
         const auto t0 = std::chrono::steady_clock::now();
         const unsigned seed = 1000u * static_cast<unsigned>(s + 1) + static_cast<unsigned>(std::lround(sigma * 1000));
-        std::vector<BrfdTest> recs = drives;
+        std::vector<BrfdTest> recs;
         std::vector<std::vector<double>> clean;
-        std::mt19937 rng(seed);
-        std::normal_distribution<double> nd(0.0, sigma);
-        for (BrfdTest& t : recs) {
-          clean.push_back(c.truth(t, base));
-          t.force_kip = clean.back();
-          for (double& f : t.force_kip) f += nd(rng);
+        if (c.records) {
+          for (auto& rc : c.records(seed, sigma)) {
+            recs.push_back(std::move(rc.first));
+            clean.push_back(std::move(rc.second));
+          }
+        } else {
+          recs = drives;
+          std::mt19937 rng(seed);
+          std::normal_distribution<double> nd(0.0, sigma);
+          for (BrfdTest& t : recs) {
+            clean.push_back(c.truth(t, base));
+            t.force_kip = clean.back();
+            for (double& f : t.force_kip) f += nd(rng);
+          }
+        }
+        {
+          std::ofstream f(model_path);
+          f << brfd_params_to_yaml(c.base ? *c.base : base);
         }
         DiagnoseOptions o;
         o.model_path = model_path;
@@ -331,6 +405,7 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
         o.figures = false;
         o.max_effects = 3;
         o.seed = seed;
+        o.effect_evals = bo.effect_evals;
         if (bo.verbose) o.log = bo.log;
         if (c.identify) {
           o.base_identification.global_runs = 1;

@@ -16,6 +16,8 @@
 #include "damper/model/brfd_model.h"
 
 #include <functional>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,11 @@ struct BenchCase {
   bool identify = false;  ///< diagnose with --base identify (else --base model)
   /// Noise-free "measured" force for the inputs of `test` (time, drum, actuators filled in).
   std::function<std::vector<double>(const BrfdTest& test, const BrfdParams& base)> truth;
+  /// Alternative generator (damper/synthetic shapes): the noisy records and their noise-free force
+  /// for (seed, noise); when set, `truth` and the bench drives are not used and `base` is the model
+  /// diagnose starts from.
+  std::function<std::vector<std::pair<BrfdTest, std::vector<double>>>(unsigned seed, double noise_kip)> records;
+  std::optional<BrfdParams> base;
 };
 
 /// Options of run_diagnose_bench().
@@ -39,8 +46,12 @@ struct BenchOptions {
   std::string out_dir;             ///< bench.csv (empty: none)
   std::function<void(const std::string&)> log;
   bool verbose = false;            ///< also log each diagnose report
-  /// Extra cases (e.g. the hidden shapes of damper/synthetic), appended to the matrix.
+  int effect_evals = 60;           ///< diagnose's LN_BOBYQA evaluations per start of an effect fit
+  /// Extra cases, appended to the matrix.
   std::vector<BenchCase> extra;
+  /// Also run the shapes of damper/synthetic (written blind by another author; see
+  /// hidden_shape_cases()), or only those.
+  bool hidden_shapes = false, only_hidden_shapes = false;
 };
 
 /// One trial's outcome.
@@ -64,6 +75,12 @@ struct BenchResult {
 BrfdParams bench_base_model();
 /// The library cases (every effect x weak/strong), the own non-library shapes and 'none'.
 std::vector<BenchCase> bench_cases(bool quick);
+/// The shapes of damper/synthetic/hidden_shapes.h (three-stage backlash, 2nd-order actuator,
+/// actuator delay, displacement friction |x|^p, rate-and-state velocity friction, relaxing residual
+/// force, viscous power law, asymmetry, none) at strength 0.5 and 1, on the paper's harmonic tests
+/// 1 and 4 (1024 Hz, 15 s), from configs/brfd-semiactive.yaml's model. Their family labels map to
+/// the library: displacement_friction -> self_energizing, velocity_friction and viscous -> velocity.
+std::vector<BenchCase> hidden_shape_cases(bool quick);
 /// The two drives of a trial (inputs only; force empty), at rate_hz.
 std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz);
 

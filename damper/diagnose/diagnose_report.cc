@@ -212,12 +212,12 @@ std::string diagnose_confidence_line(const DiagnoseResult& r) {
 
 std::vector<std::string> format_candidate_table(const std::vector<CandidateScore>& scores) {
   std::vector<std::string> out;
-  out.push_back("  " + pad("effect", 17) + pad("params (all fitting data)", 62) + lpad("held-out RMSE", 16) + lpad("gain", 7) +
+  out.push_back("  " + pad("effect", 17) + pad("params (fold 1; ADDED: all fitting data)", 62) + lpad("held-out RMSE", 16) + lpad("gain", 7) +
                 lpad("excess", 8) + lpad("parts", 7) + lpad("own", 6) + lpad("conf", 6) + "  verdict");
   for (const CandidateScore& c : scores) {
     std::string params;
     for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? " " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 3);
-    if (c.theta.empty()) params = "(per fold)";
+    if (c.theta.empty()) params = "(null)";
     out.push_back("  " + pad(c.effect, 17) + pad(params, 62) +
                   lpad(fixed(c.heldout_rmse_null_kip, 4) + "->" + fixed(c.heldout_rmse_kip, 4), 16) +
                   lpad(fixed(100.0 * c.heldout_gain, 1) + "%", 7) + lpad(fixed(100.0 * c.excess_share, 0) + "%", 8) +

@@ -282,7 +282,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
       s.heldout_energy += fold_energy(recs, fold, fp, o.segmentation);
       signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, own_all);
       cand_pred[c].push_back(std::move(fp));
-      if (plan.folds.size() == 1) s.theta = spec->present(fit.effects) ? spec->get(fit.effects) : std::vector<double>{};
+      if (f == 0) s.theta = spec->present(fit.effects) ? spec->get(fit.effects) : std::vector<double>{};  // fold 1's
     }
     s.heldout_rmse_null_kip = n > 0 ? std::sqrt(sse0 / n) : 0.0;
     s.heldout_rmse_kip = n > 0 ? std::sqrt(sse1 / n) : 0.0;

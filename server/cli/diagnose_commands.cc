@@ -79,6 +79,11 @@ void add_diagnose_commands(CLI::App& app) {
   bench->add_option("--seeds", b->o.seeds, "seeds per case and noise level")->check(CLI::Range(1, 100))->capture_default_str();
   bench->add_option("--only", b->o.only, "run only cases whose name starts with one of these (e.g. backlash own:)");
   bench->add_option("--out", b->o.out_dir, "folder for bench.csv");
+  bench->add_option("--effect-evals", b->o.effect_evals, "diagnose's LN_BOBYQA evaluations per start of an effect fit")
+      ->check(CLI::Range(5, 100000))->capture_default_str();
+  bench->add_flag("--hidden-shapes", b->o.hidden_shapes,
+                  "also run the shapes of damper/synthetic (written blind by another author)");
+  bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");
   bench->add_flag("--verbose", b->o.verbose, "print each trial's diagnose report");
   bench->callback([b, cmd]() {
     damper::BenchOptions bo = b->o;
