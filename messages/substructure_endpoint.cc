@@ -56,6 +56,8 @@ void SubstructureEndpoint::prepare_reply(int num_dampers) {
   feedback_.num_dampers = num_dampers;
   feedback_.force_kip.assign(static_cast<std::size_t>(num_dampers), 0.0);
   feedback_.measured_drift_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
+  feedback_.actuator1_position_in.assign(static_cast<std::size_t>(num_dampers), 0.0);  // the node fills them
+  feedback_.actuator2_position_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
 }
 
 void SubstructureEndpoint::reply_ok(int64_t step) {

@@ -20,7 +20,7 @@ BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
     p.semiactive.actuator2_initial_in = p.band_brake.actuator2_initial_in;
     return p;
   }
-  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity", "effects"});
+  s.allow_only({"model", "lugre", "semiactive", "b_of_velocity", "effects", "electric_actuators"});
   const common::YamlSection l = s.section("lugre");
   l.allow_only({"sigma0_kip_per_in", "sigma1_kip_s_per_in", "sigma2_kip_s_per_in", "fs_fwd_kip",
                 "fs_bwd_kip", "fc_fwd_kip", "fc_bwd_kip", "vs_in_per_s"});
@@ -74,6 +74,7 @@ BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
   }
   // Optional physical extensions found by `hybridsim diagnose` (damper/model/effects.h).
   if (s.has("effects")) p.effects = effects_from_yaml(s.section("effects"));
+  if (s.has("electric_actuators")) p.electric_actuators = electric_actuator_params_from_yaml(s.section("electric_actuators"));
   return p;
 }
 
@@ -120,6 +121,7 @@ std::string brfd_params_to_yaml(const BrfdParams& p) {
     list(c.bwd_kip);
   }
   o << effects_to_yaml(p.effects);
+  o << "electric_actuators:\n" << electric_actuator_params_to_yaml(p.electric_actuators);
   return o.str();
 }
 

@@ -11,6 +11,7 @@
 #include "damper/model/band_brake_model.h"
 #include "damper/model/damper_model.h"
 #include "damper/model/effects.h"
+#include "damper/model/electric_actuator.h"
 
 #include <array>
 #include <string>
@@ -72,6 +73,10 @@ struct BrfdParams {
   ModelEffects effects;
   /// The band-brake model's parameters (used when kind == band_brake; the LuGre blocks are then unused).
   BandBrakeParams band_brake;
+  /// The electric actuators that move x_1, x_2 (stroke, velocity limit, response; config key
+  /// `electric_actuators:`). Used by the virtual substructure and the controller
+  /// (control/controller.h); a run without a controller holds x'_1, x'_2 and never moves them.
+  ElectricActuatorParams electric_actuators;
 };
 
 /// The BRFD friction model with its bristle state z (in): the DamperModel of the paper

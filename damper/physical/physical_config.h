@@ -41,6 +41,10 @@ struct SafetyLimits {
   double actuator_min_in = 0.30;       ///< electric actuator position commands must stay in
   double actuator_max_in = 1.20;       ///<   [actuator_min_in, actuator_max_in]
   double actuator_force_lb = 4000.0;   ///< |measured electric actuator force| (their safety limit)
+  /// |change of an electric actuator command| per controller period / period (semi-active
+  /// control moves them; the substructure shapes the controller's targets at the actuator
+  /// model's velocity_limit_in_per_s, this is the backstop)
+  double actuator_velocity_in_per_s = 1.0;
   double drift_in = 1.5;               ///< |target drum displacement (drift) from the server|
   double tracking_error_in = 0.3;      ///< |measured - target drum displacement| (target blended in over ramp_in_s)
 };
@@ -112,7 +116,7 @@ inline PhysicalSettings physical_settings_from_yaml(const common::YamlSection& s
   if (s.has("limits")) {
     const common::YamlSection l = s.section("limits");
     l.allow_only({"stroke_in", "velocity_in_per_s", "actuator_min_in", "actuator_max_in", "actuator_force_lb",
-                  "drift_in", "tracking_error_in"});
+                  "actuator_velocity_in_per_s", "drift_in", "tracking_error_in"});
     SafetyLimits& m = p.limits;
     m.stroke_in = l.get_double_in("stroke_in", m.stroke_in, 1e-6, 100.0);
     m.velocity_in_per_s = l.get_double_in("velocity_in_per_s", m.velocity_in_per_s, 1e-6, 1000.0);
@@ -120,6 +124,7 @@ inline PhysicalSettings physical_settings_from_yaml(const common::YamlSection& s
     m.actuator_max_in = l.get_double_in("actuator_max_in", m.actuator_max_in, -100.0, 100.0);
     if (m.actuator_max_in <= m.actuator_min_in) l.fail("actuator_max_in", "must be > limits.actuator_min_in");
     m.actuator_force_lb = l.get_double_in("actuator_force_lb", m.actuator_force_lb, 1e-6, 1e6);
+    m.actuator_velocity_in_per_s = l.get_double_in("actuator_velocity_in_per_s", m.actuator_velocity_in_per_s, 1e-6, 1000.0);
     m.drift_in = l.get_double_in("drift_in", m.drift_in, 1e-6, 100.0);
     m.tracking_error_in = l.get_double_in("tracking_error_in", m.tracking_error_in, 1e-6, 100.0);
   }
@@ -190,7 +195,8 @@ inline std::string physical_settings_to_yaml(const PhysicalSettings& p) {
   const SafetyLimits& l = p.limits;
   o << "limits:\n  stroke_in: " << l.stroke_in << "\n  velocity_in_per_s: " << l.velocity_in_per_s
     << "\n  actuator_min_in: " << l.actuator_min_in << "\n  actuator_max_in: " << l.actuator_max_in
-    << "\n  actuator_force_lb: " << l.actuator_force_lb << "\n  drift_in: " << l.drift_in
+    << "\n  actuator_force_lb: " << l.actuator_force_lb << "\n  actuator_velocity_in_per_s: " << l.actuator_velocity_in_per_s
+    << "\n  drift_in: " << l.drift_in
     << "\n  tracking_error_in: " << l.tracking_error_in << "\n";
   const Watchdogs& w = p.watchdogs;
   o << "watchdogs:\n  sensor_frame_timeout_s: " << w.sensor_frame_timeout_s

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -105,6 +106,8 @@ void PhysicalNode::on_run_control(const hybrid_lcm::run_control_t& msg, TimePoin
       return;
     }
     endpoint_.prepare_reply(1);
+    endpoint_.reply().actuator1_position_in[0] = hold_positions_.actuator1_in;
+    endpoint_.reply().actuator2_position_in[0] = hold_positions_.actuator2_in;
     if (!o_.results_dir.empty()) {
       recorder_ = std::make_unique<SampleRecorder>((std::filesystem::path(o_.results_dir) / "physical.csv").string(),
                                                    record_columns());
@@ -205,7 +208,8 @@ void PhysicalNode::advance(TimePoint now) {
         ActuatorSetpoint measured{f.drum_displacement_in, f.actuator1_position_in, f.actuator2_position_in};
         ramp_ = SetpointRamp(measured, start_,
                              SetpointRamp::duration_for(measured, start_, s_.ramp.positioning_s,
-                                                        s_.ramp.ramp_velocity_in_per_s));
+                                                        s_.ramp.ramp_velocity_in_per_s,
+                                                        0.9 * s_.limits.actuator_velocity_in_per_s));
         phase_ = Phase::positioning;
         phase_start_ = now;
         next_tick_ = now;
@@ -321,7 +325,8 @@ void PhysicalNode::tick(TimePoint now) {
 
 void PhysicalNode::begin_ramp(Phase phase, TimePoint now) {
   const ActuatorSetpoint from = safety_.has_published() ? safety_.last_published() : safe_;
-  ramp_ = SetpointRamp(from, safe_, SetpointRamp::duration_for(from, safe_, s_.ramp.ramp_out_s, s_.ramp.ramp_velocity_in_per_s));
+  ramp_ = SetpointRamp(from, safe_, SetpointRamp::duration_for(from, safe_, s_.ramp.ramp_out_s, s_.ramp.ramp_velocity_in_per_s,
+                                                                        0.9 * s_.limits.actuator_velocity_in_per_s));
   phase_ = phase;
   next_tick_ = now;
   tick_ = 0;
@@ -342,6 +347,18 @@ void PhysicalNode::process_command(TimePoint now) {
   const double r = ramp_factor(static_cast<double>(steps_done_) * period_, s_.ramp.ramp_in_s);
   ActuatorSetpoint sp = start_;
   sp.drum_in = start_.drum_in + r * (current_compensated_ - start_.drum_in);
+  if (pending_.actuator_targets_valid) {
+    // Semi-active control: the electric actuators go to the controller's targets (blended in
+    // like the drum), shaped at the actuator model's velocity limit; the safety layer checks
+    // stroke and rate of what results (a target beyond the stroke trips the run).
+    const ActuatorSetpoint& last = safety_.has_published() ? safety_.last_published() : start_;
+    const double step_max = o_.model.electric_actuators.velocity_limit_in_per_s * period_;
+    const double goal1 = start_.actuator1_in + r * (pending_.actuator1_target_in[0] - start_.actuator1_in);
+    const double goal2 = start_.actuator2_in + r * (pending_.actuator2_target_in[0] - start_.actuator2_in);
+    sp.actuator1_in = last.actuator1_in + std::clamp(goal1 - last.actuator1_in, -step_max, step_max);
+    sp.actuator2_in = last.actuator2_in + std::clamp(goal2 - last.actuator2_in, -step_max, step_max);
+    if (!std::isfinite(goal1) || !std::isfinite(goal2)) sp.actuator1_in = sp.actuator2_in = goal1 + goal2;
+  }
   // What the actuator is meant to do (the tracking check's reference): the target, blended
   // in over the ramp-in like the command.
   current_intended_ = start_.drum_in + r * (current_target_ - start_.drum_in);
@@ -380,6 +397,8 @@ void PhysicalNode::answer_step(TimePoint now) {
   hybrid_lcm::force_feedback_t& reply = endpoint_.reply();
   reply.force_kip[0] = f.friction_force_kip;
   reply.measured_drift_in[0] = measured;
+  reply.actuator1_position_in[0] = f.actuator1_position_in;
+  reply.actuator2_position_in[0] = f.actuator2_position_in;
   endpoint_.reply_ok(current_step_);
 }
 

@@ -33,6 +33,15 @@ bool SafetyLayer::command_ok(const ActuatorSetpoint& sp, std::string& why) const
                 rate, limits_.velocity_in_per_s);
       return false;
     }
+    for (int k = 0; k < 2; ++k) {
+      const double a_rate =
+          std::abs(k == 0 ? sp.actuator1_in - last_.actuator1_in : sp.actuator2_in - last_.actuator2_in) / period_s_;
+      if (a_rate > limits_.actuator_velocity_in_per_s) {
+        why = fmt("electric actuator rate limit: actuator %.0f command changes at %.3f in/s", k + 1.0, a_rate) +
+              fmt(", limit %.3f in/s (limits.actuator_velocity_in_per_s)", limits_.actuator_velocity_in_per_s, 0.0);
+        return false;
+      }
+    }
   }
   for (int k = 0; k < 2; ++k) {
     const double x = k == 0 ? sp.actuator1_in : sp.actuator2_in;
@@ -100,11 +109,12 @@ SetpointRamp::SetpointRamp(const ActuatorSetpoint& from, const ActuatorSetpoint&
     : from_(from), to_(to), duration_s_(duration_s) {}
 
 double SetpointRamp::duration_for(const ActuatorSetpoint& from, const ActuatorSetpoint& to, double min_s,
-                                  double peak_velocity) {
-  const double dist = std::max({std::abs(to.drum_in - from.drum_in), std::abs(to.actuator1_in - from.actuator1_in),
-                                std::abs(to.actuator2_in - from.actuator2_in)});
+                                  double peak_velocity, double actuator_peak_velocity) {
+  if (!(actuator_peak_velocity > 0.0)) actuator_peak_velocity = peak_velocity;
+  const double act = std::max(std::abs(to.actuator1_in - from.actuator1_in), std::abs(to.actuator2_in - from.actuator2_in));
   // Peak velocity of a cosine move of distance d over T is (π/2) d / T.
-  return std::max(min_s, 0.5 * M_PI * dist / peak_velocity);
+  return std::max({min_s, 0.5 * M_PI * std::abs(to.drum_in - from.drum_in) / peak_velocity,
+                   0.5 * M_PI * act / std::min(peak_velocity, actuator_peak_velocity)});
 }
 
 ActuatorSetpoint SetpointRamp::at(double t) const {

@@ -29,7 +29,8 @@ class SafetyLayer {
   SafetyLayer(const SafetyLimits& limits, double period_s);
 
   /// Stroke (|drum| <= stroke_in), command rate (|drum - last published drum| / period <=
-  /// velocity_in_per_s), electric actuator range, finiteness. Does not publish.
+  /// velocity_in_per_s), electric actuator range and rate (actuator_velocity_in_per_s),
+  /// finiteness. Does not publish.
   bool command_ok(const ActuatorSetpoint& sp, std::string& why) const;
   /// Records a setpoint that was published (the reference of the rate check).
   void published(const ActuatorSetpoint& sp);
@@ -57,9 +58,10 @@ class SetpointRamp {
  public:
   SetpointRamp() = default;
   SetpointRamp(const ActuatorSetpoint& from, const ActuatorSetpoint& to, double duration_s);
-  /// The shortest duration >= min_s whose peak drum and actuator velocity stays <= peak_velocity.
+  /// The shortest duration >= min_s whose peak drum and actuator velocity stays <= peak_velocity
+  /// (electric actuators: <= min(peak_velocity, actuator_peak_velocity) when that is > 0).
   static double duration_for(const ActuatorSetpoint& from, const ActuatorSetpoint& to, double min_s,
-                             double peak_velocity_in_per_s);
+                             double peak_velocity_in_per_s, double actuator_peak_velocity_in_per_s = 0.0);
   ActuatorSetpoint at(double t_s) const;
   double duration_s() const { return duration_s_; }
   const ActuatorSetpoint& to() const { return to_; }

@@ -53,8 +53,13 @@ void SubstructureNode::on_run_control(const hybrid_lcm::run_control_t& msg, mess
         return;
       }
       bank_ = DamperBank(*make_damper_model(o_.model), msg.num_dampers);
+      drive_ = ActuatorDrive(o_.model.electric_actuators, bank_);
       dt_s_ = msg.dt_s;
       endpoint_.prepare_reply(msg.num_dampers);
+      for (int k = 0; k < bank_.size(); ++k) {
+        endpoint_.reply().actuator1_position_in[static_cast<std::size_t>(k)] = bank_.input(k).actuator1_in;
+        endpoint_.reply().actuator2_position_in[static_cast<std::size_t>(k)] = bank_.input(k).actuator2_in;
+      }
       started_ = true;
       endpoint_.arm_watchdog(now);
     }
@@ -78,19 +83,27 @@ void SubstructureNode::on_drift(hybrid_lcm::drift_command_t& cmd, messages::Time
   for (std::size_t k = 0; k < static_cast<std::size_t>(bank_.size()); ++k) {
     const double d = cmd.drift_in[k], v = cmd.drift_velocity_in_per_s[k];
     if (!std::isfinite(d) || !std::isfinite(v) || std::abs(d) > o_.max_drum_displacement_in ||
-        std::abs(v) > o_.max_drum_velocity_in_per_s) {
+        std::abs(v) > o_.max_drum_velocity_in_per_s ||
+        (cmd.actuator_targets_valid &&
+         (!std::isfinite(cmd.actuator1_target_in[k]) || !std::isfinite(cmd.actuator2_target_in[k])))) {
       fault(cmd.step, "drift command step " + std::to_string(cmd.step) + " damper " + std::to_string(k + 1) +
                           ": drum displacement " + std::to_string(d) + " in / velocity " + std::to_string(v) +
                           " in/s outside the limits +-" + std::to_string(o_.max_drum_displacement_in) + " in, +-" +
-                          std::to_string(o_.max_drum_velocity_in_per_s) + " in/s");
+                          std::to_string(o_.max_drum_velocity_in_per_s) + " in/s, or a non-finite actuator target");
       return;
     }
   }
   hybrid_lcm::force_feedback_t& reply = endpoint_.reply();
+  const bool targets = cmd.actuator_targets_valid != 0;
   for (int k = 0; k < bank_.size(); ++k) {
     const auto kk = static_cast<std::size_t>(k);
+    // The electric actuators follow the controller's targets through the actuator model
+    // (stroke, rate, lag; damper/model/electric_actuator.h); without targets they hold x'.
+    if (targets) drive_.follow(bank_, k, cmd.actuator1_target_in[kk], cmd.actuator2_target_in[kk], dt_s_);
     reply.force_kip[kk] = o_.echo ? 0.0 : bank_.step(k, cmd.drift_in[kk], cmd.drift_velocity_in_per_s[kk], dt_s_);
     reply.measured_drift_in[kk] = cmd.drift_in[kk];
+    reply.actuator1_position_in[kk] = bank_.input(k).actuator1_in;
+    reply.actuator2_position_in[kk] = bank_.input(k).actuator2_in;
   }
   ++steps_;
   endpoint_.reply_ok(cmd.step);

@@ -5,6 +5,7 @@
 /// Virtual mode steps a BrfdModel per damper; echo mode answers at once with zero force
 /// (the raw LCM round trip of `hybridsim bench`).
 
+#include "damper/model/actuator_drive.h"
 #include "damper/model/brfd_model.h"
 #include "messages/lcm_bus.h"
 #include "messages/substructure_endpoint.h"
@@ -49,6 +50,7 @@ class SubstructureNode : public messages::LoopActor, private messages::Substruct
   SubstructureNodeOptions o_;
   messages::SubstructureEndpoint endpoint_;
   DamperBank bank_;  ///< the run's dampers (damper/model/damper_model.h)
+  ActuatorDrive drive_;  ///< electric actuators following the controller's targets
   double dt_s_ = 0.0;
   bool started_ = false;
   long steps_ = 0;

@@ -142,6 +142,7 @@ int run_batch(const BatchOptions& o, BatchComm& comm) {
 }  // namespace
 
 int batch_command(const BatchOptions& o) {
+  if (!o.laws.empty() && !o.list && !o.bench) return batch_laws_command(o);
   if (o.list) {
     try {
       const std::vector<BatchRecord> set = load_record_set(o.records);

@@ -70,12 +70,18 @@ struct BatchOptions {
   /// worker (the same model code as brfd-substructure, no LCM, no network namespace), "lcm"
   /// forces the two-process run; "" keeps the config's.
   std::string transport;
+  /// Comma-separated control laws (control/controller.h): the set is run once per law in
+  /// OUT/<law>/ and OUT/laws-summary.csv + OUT/criteria-J*.png + OUT/drift-envelope-<record>.png
+  /// compare them (batch_laws.cc). Empty: one ordinary batch.
+  std::string laws;
 };
 
 /// `hybridsim batch ...`. Returns the exit code: 0 all records ok, 1 some failed or not run,
 /// 2 bad input (config, list file, options). Ends with the line
 /// `records=<n> ok=<n> failed=<n> seconds=<wall>`.
 int batch_command(const BatchOptions& options);
+/// `hybridsim batch --laws a,b,c ...` (called by batch_command when options.laws is set).
+int batch_laws_command(const BatchOptions& options);
 
 /// `hybridsim batch merge --out DIR`: summary.csv and plots from the finished runs of the
 /// set in DIR/batch.json (after Slurm array tasks). Same exit codes and final line.

@@ -33,6 +33,9 @@ void add_batch_commands(CLI::App& app) {
                     "override transport.kind of the config: in_process (the damper model inside each worker, "
                     "no LCM: the batch throughput mode) or lcm")
       ->check(CLI::IsMember({"in_process", "lcm"}));
+  batch->add_option("--laws", o->laws,
+                    "comma-separated control laws (passive_off,passive_on,lyapunov,clipped_optimal,"
+                    "modulated_homogeneous): the set once per law, a law x record table and plots");
   batch->add_flag("--mpi", o->mpi, "divide the records among MPI ranks (mpirun -np N hybridsim batch --mpi ...)");
   batch->add_flag("--slurm-task", o->slurm_task,
                   "run only record SLURM_ARRAY_TASK_ID (0-based) of the set; then 'hybridsim batch merge --out DIR'");

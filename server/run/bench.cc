@@ -1,5 +1,7 @@
 #include "server/run/bench.h"
 
+#include "control/controller.h"
+#include "structure/shear_building.h"
 #include "server/run/hybrid_run.h"
 #include "server/run/substructure_session.h"
 #include "common/process.h"
@@ -89,6 +91,50 @@ InProcessSpeed inprocess_speed(const std::string& config_path, int repeats) {
   return speed;
 }
 
+/// Controller::compute per step (10 stories, 3 dampers: configs/ten-story-controlled.yaml beside
+/// the ten-story config), for each law on synthetic measurements; microseconds per step.
+void bench_controller(const std::string& ten_story_config) {
+  const std::string path = (fs::path(ten_story_config).parent_path() / "ten-story-controlled.yaml").string();
+  if (!fs::exists(path)) {
+    std::printf("controller: %s not found, skipped\n", path.c_str());
+    return;
+  }
+  const RunConfig c = load_run_config(path);
+  const structure::ShearBuilding b(c.building);
+  const control::BuildingMatrices m{b.mass(), b.damping(), b.stiffness(), b.damper_gamma()};
+  const int n = b.num_stories(), nd = b.num_dampers();
+  for (control::Law law : {control::Law::passive_on, control::Law::lyapunov, control::Law::clipped_optimal,
+                           control::Law::modulated_homogeneous}) {
+    control::ControlConfig cc = c.control;
+    cc.enabled = true;
+    cc.law = law;
+    control::Controller ctl(cc, m, c.damper_model, c.dt_s);
+    Eigen::VectorXd accel(n), drift(n), force(nd), drum(nd);
+    Eigen::MatrixX2d targets(nd, 2);
+    const control::Measurements meas{&accel, &drift, &force, &drum};
+    const long steps = 200000;
+    double sink = 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (long i = 0; i < steps; ++i) {
+      const double t = i * c.dt_s;
+      for (int j = 0; j < n; ++j) {
+        accel[j] = 100.0 * std::sin(7.0 * t + j);
+        drift[j] = 0.3 * std::sin(5.0 * t + 0.1 * j);
+      }
+      for (int k = 0; k < nd; ++k) {
+        drum[k] = drift[k];
+        force[k] = 3.0 * std::cos(5.0 * t + k);
+      }
+      ctl.compute(meas, targets);
+      sink += targets(0, 0);
+    }
+    const double us = 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / steps;
+    std::printf("controller %s, %d stories / %d dampers: %.3f us per step (target <= 5 us; allocation-free: "
+                "control_tests ControllerAllocations)%s\n",
+                control::to_string(law).c_str(), n, nd, us, sink == 12345.678 ? " " : "");
+  }
+}
+
 }  // namespace
 
 int bench_command(const BenchOptions& options) {
@@ -113,7 +159,7 @@ int bench_command(const BenchOptions& options) {
       LcmSubstructure sub(link);
       sub.keep_round_trips(true);
       sub.start("bench-echo", 1, three.dt_s);
-      SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)};
+      SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), Eigen::MatrixX2d::Zero(1, 2)};
       Eigen::VectorXd d = Eigen::VectorXd::Zero(1), v = Eigen::VectorXd::Zero(1);
       for (int i = 0; i < options.round_trips; ++i) {
         d[0] = 1e-3 * i;
@@ -159,7 +205,10 @@ int bench_command(const BenchOptions& options) {
                   damper::to_string(three.damper_model.kind).c_str(), default_ns, paper_ns);
     }
 
-    // 3. In-process speed.
+    // 3b. Controller cost per step (semi-active control, 10 stories, 3 dampers).
+    bench_controller(options.ten_story_config);
+
+    // 4. In-process speed.
     const int repeats = 5;
     const InProcessSpeed s3 = inprocess_speed(options.three_story_config, repeats);
     const InProcessSpeed s10 = inprocess_speed(options.ten_story_config, repeats);

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -30,13 +31,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> time_history_columns(int stories, int dampers) {
+std::vector<std::string> time_history_columns(int stories, int dampers, bool controlled) {
   std::vector<std::string> c{"time_s", "ground_accel_g"};
   for (int i = 1; i <= stories; ++i) c.push_back("floor" + std::to_string(i) + "_disp_in");
   for (int i = 1; i <= stories; ++i) c.push_back("floor" + std::to_string(i) + "_abs_accel_g");
   for (int i = 1; i <= stories; ++i) c.push_back("story" + std::to_string(i) + "_drift_in");
   for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_drum_disp_in");
   for (int k = 1; k <= dampers; ++k) c.push_back("damper" + std::to_string(k) + "_force_kip");
+  if (controlled) {  // semi-active control: targets sent with step i, positions reached, desired Fc
+    for (int k = 1; k <= dampers; ++k) {
+      const std::string d = "damper" + std::to_string(k);
+      for (const char* col : {"_target1_in", "_target2_in", "_actuator1_in", "_actuator2_in", "_desired_fc_kip"})
+        c.push_back(d + col);
+    }
+  }
   return c;
 }
 
@@ -125,14 +133,15 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   s.damper_energy_kip_in = Eigen::VectorXd::Zero(nd);
 
   fs::create_directories(config.output.dir);
-  const std::vector<std::string> columns = time_history_columns(n, nd);
+  const bool controlled = config.control.enabled;
+  const std::vector<std::string> columns = time_history_columns(n, nd, controlled);
   const long expected_rows = num_steps / config.output.every_n_steps + 1;
   TimeHistoryWriter history(make_time_history_sink(config, columns, expected_rows, record.source), columns.size(),
                         expected_rows);
 
   structure::CrIntegrator cr(building, dt);
   structure::EnergyLedger energy(building);
-  SubstructureReply reply{Eigen::VectorXd::Zero(nd), Eigen::VectorXd::Zero(nd)};
+  SubstructureReply reply{Eigen::VectorXd::Zero(nd), Eigen::VectorXd::Zero(nd), Eigen::MatrixX2d::Zero(nd, 2)};
   Eigen::VectorXd force = Eigen::VectorXd::Zero(nd);       // damper forces at the current step
   Eigen::VectorXd drum = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd drum_vel = Eigen::VectorXd::Zero(nd);
@@ -141,6 +150,30 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   Eigen::VectorXd energy_per_damper = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd damper_power = Eigen::VectorXd::Zero(nd), damper_power_prev = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd abs_accel_g(n);
+  // Semi-active control: the controller sees floor absolute accelerations (in/s²) and forces of
+  // the last completed step, the drifts and drum displacements of the step being computed.
+  std::unique_ptr<control::Controller> controller;
+  const Eigen::MatrixX2d hold = [&] {
+    Eigen::MatrixX2d h(nd, 2);
+    h.col(0).setConstant(config.damper_model.semiactive.actuator1_initial_in);
+    h.col(1).setConstant(config.damper_model.semiactive.actuator2_initial_in);
+    return h;
+  }();
+  Eigen::MatrixX2d targets = hold, positions = hold, positions_prev = hold;
+  reply.actuator_in = hold;
+  Eigen::VectorXd abs_accel_in_s2 = Eigen::VectorXd::Zero(n), drift_next(n);
+  if (controlled) {
+    control::BuildingMatrices bm{building.mass(), building.damping(), building.stiffness(), gamma};
+    controller = std::make_unique<control::Controller>(config.control, bm, config.damper_model, dt);
+    substructure.set_actuator_targets(&targets);
+  }
+  const control::Measurements measured{&abs_accel_in_s2, &drift_next, &force, &drum};
+  s.actuator_travel_in = Eigen::VectorXd::Zero(nd);
+  s.actuator_peak_speed_in_per_s = Eigen::VectorXd::Zero(nd);
+  s.actuator_min_in = hold.rowwise().minCoeff();
+  s.actuator_max_in = hold.rowwise().maxCoeff();
+  double controller_s = 0.0;
+  control::ResponseStats stats(n, building.mass().diagonal());
 
   auto write_row = [&](double t, double ag_in_s2) {
     history.add(t);
@@ -151,6 +184,15 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     for (int i = 0; i < n; ++i) history.add(drift[i]);
     for (int k = 0; k < nd; ++k) history.add(reply.measured_drum_in[k]);
     for (int k = 0; k < nd; ++k) history.add(force[k]);
+    if (controlled) {
+      for (int k = 0; k < nd; ++k) {
+        history.add(targets(k, 0));
+        history.add(targets(k, 1));
+        history.add(positions(k, 0));
+        history.add(positions(k, 1));
+        history.add(controller->desired_friction_kip(k));
+      }
+    }
     history.end_row();
   };
 
@@ -175,7 +217,8 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     cr.initialize(ag, force);
     energy.start(cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
     drift.setZero();
-    abs_accel_g = (cr.acceleration_in_per_s2().array() + ag) / kGravity_in_per_s2;
+    abs_accel_in_s2 = cr.acceleration_in_per_s2().array() + ag;
+    abs_accel_g = abs_accel_in_s2 / kGravity_in_per_s2;
     write_row(0.0, ag);
     if (response) record_history(0.0);
     for (long i = 0; i < num_steps; ++i) {
@@ -183,8 +226,27 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       cr.predict();  // x₊, v₊ explicit: known before the damper force is needed
       drum.noalias() = gamma.transpose() * cr.next_displacement_in();
       drum_vel.noalias() = gamma.transpose() * cr.next_velocity_in_per_s();
+      if (controlled) {
+        const Eigen::VectorXd& xn = cr.next_displacement_in();
+        drift_next[0] = xn[0];
+        for (int j = 1; j < n; ++j) drift_next[j] = xn[j] - xn[j - 1];
+        const auto c0 = std::chrono::steady_clock::now();
+        controller->compute(measured, targets);
+        controller_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      }
       substructure.exchange(i + 1, t_next, drum, drum_vel, reply);
       force = reply.force_kip;
+      if (controlled) {
+        positions = reply.actuator_in;
+        for (int k = 0; k < nd; ++k) {
+          const double d1 = std::abs(positions(k, 0) - positions_prev(k, 0)), d2 = std::abs(positions(k, 1) - positions_prev(k, 1));
+          s.actuator_travel_in[k] += d1 + d2;
+          s.actuator_peak_speed_in_per_s[k] = std::max(s.actuator_peak_speed_in_per_s[k], std::max(d1, d2) / dt);
+          s.actuator_min_in[k] = std::min(s.actuator_min_in[k], positions.row(k).minCoeff());
+          s.actuator_max_in[k] = std::max(s.actuator_max_in[k], positions.row(k).maxCoeff());
+        }
+        positions_prev = positions;
+      }
       ag = record.accel_in_per_s2(t_next);
       cr.complete(ag, force);
       energy.add_step(dt, cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
@@ -195,7 +257,9 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       const Eigen::VectorXd& x = cr.displacement_in();
       drift[0] = x[0];
       for (int j = 1; j < n; ++j) drift[j] = x[j] - x[j - 1];
-      abs_accel_g = (cr.acceleration_in_per_s2().array() + ag) / kGravity_in_per_s2;
+      abs_accel_in_s2 = cr.acceleration_in_per_s2().array() + ag;
+      abs_accel_g = abs_accel_in_s2 / kGravity_in_per_s2;
+      stats.add(drift, abs_accel_in_s2);
       s.peak_drift_in = s.peak_drift_in.cwiseMax(drift.cwiseAbs());
       s.peak_floor_accel_g = s.peak_floor_accel_g.cwiseMax(abs_accel_g.cwiseAbs());
       s.peak_force_kip = s.peak_force_kip.cwiseMax(force.cwiseAbs());
@@ -228,6 +292,35 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   s.strain_energy_kip_in = energy.strain_kip_in();
   s.inherent_damping_energy_kip_in = energy.inherent_damping_kip_in();
   s.energy_balance_error = energy.balance_error();
+  if (controlled) {
+    s.control_law = control::to_string(config.control.law);
+    s.controller_us_per_step = s.steps > 0 ? 1e6 * controller_s / static_cast<double>(s.steps) : 0.0;
+  }
+  // The same building without dampers under the same record and steps (CR, F = 0): the
+  // reference of the benchmark criteria J (Ohtori et al. 2004).
+  if (s.steps > 0) {
+    structure::CrIntegrator bare(building, dt);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+    control::ResponseStats ref(n, building.mass().diagonal());
+    Eigen::VectorXd d(n), a(n);
+    bare.initialize(record.accel_in_per_s2(0.0), zero);
+    for (long i = 0; i < s.steps; ++i) {
+      const double t_next = (i + 1) * dt;
+      bare.predict();
+      const double agn = record.accel_in_per_s2(t_next);
+      bare.complete(agn, zero);
+      const Eigen::VectorXd& x = bare.displacement_in();
+      d[0] = x[0];
+      for (int j = 1; j < n; ++j) d[j] = x[j] - x[j - 1];
+      a = bare.acceleration_in_per_s2().array() + agn;
+      ref.add(d, a);
+    }
+    s.criteria = control::evaluate_criteria(stats, ref);
+    s.uncontrolled_peak_drift_in = ref.peak_drift_in();
+    s.uncontrolled_peak_accel_g = ref.peak_accel_in_per_s2() / kGravity_in_per_s2;
+    s.uncontrolled_peak_base_shear_kip = ref.peak_base_shear_kip();
+    s.peak_base_shear_kip = stats.peak_base_shear_kip();
+  }
   return s;
 }
 
@@ -259,6 +352,26 @@ void write_summary_json(const RunSummary& s, const RunConfig& config, const std:
                         {"inherent_damping", s.inherent_damping_energy_kip_in},
                         {"damper", s.damper_energy_kip_in.sum()},
                         {"balance_error", s.energy_balance_error}};
+  // Benchmark criteria relative to the building without dampers (Ohtori et al. 2004).
+  const control::Criteria& c = s.criteria;
+  j["criteria"] = {{"J1_peak_drift_ratio", c.j1},
+                   {"J2_peak_floor_accel", c.j2},
+                   {"J3_peak_base_shear", c.j3},
+                   {"J1_rms_drift_ratio", c.j1_rms},
+                   {"J2_rms_floor_accel", c.j2_rms},
+                   {"J3_rms_base_shear", c.j3_rms},
+                   {"peak_base_shear_kip", s.peak_base_shear_kip},
+                   {"uncontrolled", {{"peak_drift_in", s.uncontrolled_peak_drift_in},
+                                     {"peak_floor_accel_g", s.uncontrolled_peak_accel_g},
+                                     {"peak_base_shear_kip", s.uncontrolled_peak_base_shear_kip}}}};
+  if (!s.control_law.empty()) {
+    j["control"] = {{"law", s.control_law},
+                    {"actuator_travel_in", to_json(s.actuator_travel_in)},
+                    {"actuator_peak_speed_in_per_s", to_json(s.actuator_peak_speed_in_per_s)},
+                    {"actuator_min_in", to_json(s.actuator_min_in)},
+                    {"actuator_max_in", to_json(s.actuator_max_in)},
+                    {"controller_us_per_step", s.controller_us_per_step}};
+  }
   std::ofstream f(path);
   f << std::setw(2) << j << "\n";
 }
@@ -281,6 +394,16 @@ std::string format_summary(const RunSummary& s) {
     << " + strain " << s.strain_energy_kip_in << " + inherent damping "
     << s.inherent_damping_energy_kip_in << " + damper " << s.damper_energy_kip_in.sum()
     << "  (balance error " << 100.0 * s.energy_balance_error << " %)\n";
+  const control::Criteria& c = s.criteria;
+  o << "criteria vs. no damper: J1 drift " << c.j1 << "  J2 accel " << c.j2 << "  J3 base shear " << c.j3
+    << "  (RMS: " << c.j1_rms << " " << c.j2_rms << " " << c.j3_rms << ")\n";
+  if (!s.control_law.empty()) {
+    o << "control: " << s.control_law << ", controller " << s.controller_us_per_step << " us/step";
+    for (int k = 0; k < s.actuator_travel_in.size(); ++k)
+      o << "; damper " << k + 1 << " actuator travel " << s.actuator_travel_in[k] << " in, peak speed "
+        << s.actuator_peak_speed_in_per_s[k] << " in/s, range [" << s.actuator_min_in[k] << ", " << s.actuator_max_in[k] << "] in";
+    o << "\n";
+  }
   return o.str();
 }
 

@@ -14,6 +14,7 @@
 ///   run.lcmlog           all LCM traffic of the run (replay with lcm-logplayer)
 
 #include "common/process.h"
+#include "control/criteria.h"
 #include "server/run/run_config.h"
 #include "server/run/substructure.h"
 #include "structure/response_history.h"
@@ -44,6 +45,16 @@ struct RunSummary {
   double strain_energy_kip_in = 0.0;
   double inherent_damping_energy_kip_in = 0.0;
   double energy_balance_error = 0.0;  ///< |input − stored − dissipated| / |input|
+  /// Benchmark criteria against the same building without dampers (control/criteria.h).
+  control::Criteria criteria;
+  double uncontrolled_peak_drift_in = 0.0, uncontrolled_peak_accel_g = 0.0, uncontrolled_peak_base_shear_kip = 0.0;
+  double peak_base_shear_kip = 0.0;
+  /// Semi-active control (config `control:`); empty law = no control block.
+  std::string control_law;
+  Eigen::VectorXd actuator_travel_in;          ///< per damper, Σ|Δx_1| + Σ|Δx_2| (actuator effort)
+  Eigen::VectorXd actuator_peak_speed_in_per_s;///< per damper, max |Δx_k|/dt over both actuators
+  Eigen::VectorXd actuator_min_in, actuator_max_in;  ///< per damper, extreme positions reached
+  double controller_us_per_step = 0.0;        ///< mean wall time of Controller::compute
 };
 
 /// Runs the step loop against `substructure` and writes results to config.output.dir.

@@ -22,7 +22,7 @@ std::string resolve(const std::string& base_file, const std::string& path) {
 
 RunConfig load_run_config(const std::string& path) {
   const common::YamlSection top = common::YamlSection::load_file(path);
-  top.allow_only({"run", "record", "building", "damper", "transport", "output", "rig"});
+  top.allow_only({"run", "record", "building", "damper", "transport", "output", "rig", "control"});
   RunConfig c;
   c.source_file = path;
 
@@ -71,6 +71,17 @@ RunConfig load_run_config(const std::string& path) {
   tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
   tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
 
+  if (top.has("control")) {
+    c.control = control::control_config_from_yaml(top.section("control"));
+    if (c.damper_model.kind != damper::DamperKind::semiactive)
+      top.section("control").fail("law", "semi-active control needs the damper model `model: semiactive`");
+    if (c.building.dampers.empty()) top.section("control").fail("law", "the building has no dampers to control");
+    try {
+      control::FrictionInverse check(c.damper_model, c.control.min_kinetic_friction_kip);
+    } catch (const std::invalid_argument& e) {
+      top.section("control").fail("law", std::string("the damper model cannot be controlled: ") + e.what());
+    }
+  }
   // Physical mode (docs/physical.md): the rig block; absent = defaults (local emulator).
   c.rig.rig.config = resolve(path, c.rig.rig.config);
   if (top.has("rig")) c.rig = damper::physical::physical_settings_from_yaml(top.section("rig"));
@@ -130,6 +141,7 @@ std::string run_config_to_yaml(const RunConfig& c) {
     std::istringstream r(damper::physical::physical_settings_to_yaml(c.rig));
     for (std::string line; std::getline(r, line);) o << "  " << line << "\n";
   }
+  o << control::control_config_to_yaml(c.control);
   return o.str();
 }
 

@@ -4,6 +4,7 @@
 /// with defaults and one strict loader. Units: kip, in, s. Relative paths in a config are
 /// relative to the config file's folder.
 
+#include "control/controller.h"
 #include "damper/model/brfd_model.h"
 #include "damper/physical/physical_config.h"
 #include "structure/shear_building.h"
@@ -62,6 +63,9 @@ struct RunConfig {
   damper::physical::PhysicalSettings rig;
   TransportSettings transport;
   OutputSettings output;
+  /// `control:` block (control/controller.h): the semi-active law driving the electric
+  /// actuators. Absent: control.enabled is false and the actuators hold x' (passive run).
+  control::ControlConfig control;
 };
 
 /// Loads and validates a run config; throws common::ConfigError naming file, line and key.

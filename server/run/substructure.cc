@@ -17,18 +17,29 @@ namespace server {
 using Clock = std::chrono::steady_clock;
 
 InProcessSubstructure::InProcessSubstructure(const damper::BrfdParams& params)
-    : prototype_(damper::make_damper_model(params)) {}
+    : prototype_(damper::make_damper_model(params)), actuator_params_(params.electric_actuators) {}
 
 void InProcessSubstructure::start(const std::string&, int num_dampers, double dt_s) {
   bank_ = damper::DamperBank(*prototype_, num_dampers);
+  drive_ = damper::ActuatorDrive(actuator_params_, bank_);
   dt_s_ = dt_s;
 }
 
 void InProcessSubstructure::exchange(long, double, const Eigen::VectorXd& drum_disp_in,
                                      const Eigen::VectorXd& drum_vel_in_per_s,
                                      SubstructureReply& reply) {
+  // Semi-active control: the electric actuators follow the targets (actuator model), the
+  // positions reached go into Eq. (4); without targets the bank keeps x'.
+  if (const Eigen::MatrixX2d* t = actuator_targets_)
+    for (int k = 0; k < bank_.size(); ++k) drive_.follow(bank_, k, (*t)(k, 0), (*t)(k, 1), dt_s_);
   bank_.step(drum_disp_in, drum_vel_in_per_s, dt_s_, reply.force_kip);
   reply.measured_drum_in = drum_disp_in;
+  if (reply.actuator_in.rows() == bank_.size()) {
+    for (int k = 0; k < bank_.size(); ++k) {
+      reply.actuator_in(k, 0) = bank_.input(k).actuator1_in;
+      reply.actuator_in(k, 1) = bank_.input(k).actuator2_in;
+    }
+  }
 }
 
 struct LcmSubstructure::Impl {
@@ -126,6 +137,9 @@ void LcmSubstructure::start(const std::string& run_id, int num_dampers, double d
   m.command.num_dampers = num_dampers;
   m.command.drift_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
   m.command.drift_velocity_in_per_s.assign(static_cast<std::size_t>(num_dampers), 0.0);
+  m.command.actuator_targets_valid = 0;
+  m.command.actuator1_target_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
+  m.command.actuator2_target_in.assign(static_cast<std::size_t>(num_dampers), 0.0);
   hybrid_lcm::run_control_t start;
   start.run_id = run_id;
   start.command = hybrid_lcm::run_control_t::COMMAND_START;
@@ -155,6 +169,13 @@ void LcmSubstructure::exchange(long step, double sim_time_s, const Eigen::Vector
   for (int k = 0; k < m.num_dampers; ++k) {
     m.command.drift_in[k] = drum_disp_in[k];
     m.command.drift_velocity_in_per_s[k] = drum_vel_in_per_s[k];
+  }
+  m.command.actuator_targets_valid = actuator_targets_ != nullptr;
+  if (actuator_targets_) {
+    for (int k = 0; k < m.num_dampers; ++k) {
+      m.command.actuator1_target_in[k] = (*actuator_targets_)(k, 0);
+      m.command.actuator2_target_in[k] = (*actuator_targets_)(k, 1);
+    }
   }
   m.command.step = step;
   m.command.sim_time_s = sim_time_s;
@@ -186,12 +207,17 @@ void LcmSubstructure::exchange(long step, double sim_time_s, const Eigen::Vector
                             std::to_string(m.num_dampers));
   }
   for (int k = 0; k < m.num_dampers; ++k) {
-    if (!std::isfinite(fb.force_kip[k]) || !std::isfinite(fb.measured_drift_in[k])) {
+    if (!std::isfinite(fb.force_kip[k]) || !std::isfinite(fb.measured_drift_in[k]) ||
+        !std::isfinite(fb.actuator1_position_in[k]) || !std::isfinite(fb.actuator2_position_in[k])) {
       throw SubstructureError("force feedback on '" + m.settings.channels.force_feedback() +
                               "' carries a non-finite value at step " + std::to_string(step));
     }
     reply.force_kip[k] = fb.force_kip[k];
     reply.measured_drum_in[k] = fb.measured_drift_in[k];
+    if (reply.actuator_in.rows() > k) {
+      reply.actuator_in(k, 0) = fb.actuator1_position_in[k];
+      reply.actuator_in(k, 1) = fb.actuator2_position_in[k];
+    }
   }
 }
 

@@ -5,6 +5,7 @@
 /// remote over LCM (a brfd-substructure process, virtual or physical) give identical
 /// results for the same model.
 
+#include "damper/model/actuator_drive.h"
 #include "damper/model/brfd_model.h"
 #include "messages/lcm_bus.h"
 
@@ -33,6 +34,8 @@ class SubstructureError : public std::runtime_error {
 struct SubstructureReply {
   Eigen::VectorXd force_kip;          ///< per damper, force on its actuator (resisting +velocity)
   Eigen::VectorXd measured_drum_in;   ///< per damper, drum displacement achieved
+  /// per damper, electric actuator 1 and 2 positions reached (in); filled by every substructure
+  Eigen::MatrixX2d actuator_in;
 };
 
 class Substructure {
@@ -46,6 +49,13 @@ class Substructure {
                         const Eigen::VectorXd& drum_vel_in_per_s, SubstructureReply& reply) = 0;
   /// Orderly stop (abort = emergency stop) with a reason for the logs.
   virtual void stop(bool abort, const std::string& reason) = 0;
+  /// Semi-active control: electric actuator position targets (num_dampers x 2, in) that the
+  /// following exchange() calls send with the drum displacement; nullptr (the default) holds
+  /// x'_1, x'_2. The matrix must outlive the exchanges (the step loop owns it).
+  void set_actuator_targets(const Eigen::MatrixX2d* targets_in) { actuator_targets_ = targets_in; }
+
+ protected:
+  const Eigen::MatrixX2d* actuator_targets_ = nullptr;
 };
 
 /// The damper models called directly: a damper::DamperBank of the config's model, one per
@@ -65,6 +75,8 @@ class InProcessSubstructure : public Substructure {
  private:
   std::unique_ptr<damper::DamperModel> prototype_;
   damper::DamperBank bank_;
+  damper::ActuatorDrive drive_;  ///< electric actuators following set_actuator_targets()
+  damper::ElectricActuatorParams actuator_params_;
   double dt_s_ = 0.0;
 };
 

@@ -78,6 +78,8 @@ TEST(InMemoryLcm, StrictDecodeNamesChannelAndType) {
   fb.num_dampers = 1;
   fb.force_kip = {1.0};
   fb.measured_drift_in = {0.1};
+  fb.actuator1_position_in = {0.655};  // every array is sized num_dampers
+  fb.actuator2_position_in = {0.8559};
   std::vector<uint8_t> bytes;
   messages::publish_message(*lcm, "FB", fb, bytes);
   lcm->publish("FB", bytes.data(), bytes.size() - 3);  // truncated

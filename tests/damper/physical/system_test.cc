@@ -352,7 +352,7 @@ TEST(PhysicalSystem, ServerGoesSilentAndTheSubstructureTripsOnItsCommandWatchdog
   link.start_timeout_s = 10.0;
   server::LcmSubstructure lcm(link);
   lcm.start(run_id, 1, c.dt_s);
-  server::SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)};
+  server::SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), Eigen::MatrixX2d::Zero(1, 2)};
   Eigen::VectorXd d(1), v(1);
   for (long k = 1; k <= 600; ++k) {
     const double t = k * c.dt_s;

@@ -530,6 +530,8 @@ void run_intruder(std::atomic<bool>& stop, std::atomic<long>& answered) {
       fb.num_dampers = cmd.num_dampers;
       fb.force_kip.assign(static_cast<std::size_t>(cmd.num_dampers), 999.0);
       fb.measured_drift_in = cmd.drift_in;
+      fb.actuator1_position_in = cmd.actuator1_target_in;
+      fb.actuator2_position_in = cmd.actuator2_target_in;
       fb.status = hybrid_lcm::force_feedback_t::STATUS_OK;
       lc->publish(ch.force_feedback(), &fb);
       const long n = ++*answered;
