@@ -26,6 +26,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -592,6 +593,95 @@ TEST(PhysicalSystem, SameConfigRunsVirtualAndPhysicalByChangingOneKey) {
   EXPECT_EQ(sv["steps"], sp["steps"]);
   EXPECT_NEAR(dp, dv, 0.25 * dv);  // the same structure and damper, seen through a rig
   EXPECT_NEAR(fp, fv, 0.25 * fv);
+}
+
+/// Semi-active control in physical mode: three-story-physical-controlled.yaml (rig with the
+/// semi-active model), the given law, optionally an edited damper model (inline).
+std::string write_controlled_config(const std::string& dir, double duration_s, const std::string& law,
+                                    const std::function<void(YAML::Node&)>& edit_model = {}) {
+  YAML::Node rig = YAML::LoadFile(src("configs/rig-semiactive.yaml"));
+  rig["damper_model"] = src("configs/brfd-semiactive.yaml");
+  write_yaml(dir + "/rig.yaml", rig);
+  YAML::Node c = YAML::LoadFile(src("configs/three-story-physical-controlled.yaml"));
+  c["record"]["path"] = src("configs/" + c["record"]["path"].as<std::string>());
+  c["record"]["duration_s"] = duration_s;
+  YAML::Node model = YAML::LoadFile(src("configs/brfd-semiactive.yaml"));
+  if (edit_model) edit_model(model);
+  c["damper"].remove("model_config");
+  c["damper"]["model"] = model;
+  c["rig"]["config"] = dir + "/rig.yaml";
+  c["output"]["dir"] = dir + "/out";
+  c["transport"]["channel_prefix"] = prefix_for(dir);
+  c["control"]["law"] = law;
+  write_yaml(dir + "/run.yaml", c);
+  return dir + "/run.yaml";
+}
+
+TEST(PhysicalSystem, ControlledRunTheRigsElectricActuatorsFollowTheTargets) {
+  const std::string dir = test_support::fresh_temp_dir("control-follow");
+  const auto r = hybridsim_run(write_controlled_config(dir, 3.0, "passive_on"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err << test_support::read_text(dir + "/out/substructure.log");
+  const json s = read_json(dir + "/out/summary.json");
+  ASSERT_TRUE(s.contains("control")) << s.dump(2);
+  // time history: damper1_target1_in, _target2_in, _actuator1_in, _actuator2_in (measured by the rig)
+  std::ifstream f(dir + "/out/time_history.csv");
+  std::string header;
+  std::getline(f, header);
+  std::vector<std::string> cols;
+  std::stringstream hs(header);
+  for (std::string c; std::getline(hs, c, ',');) cols.push_back(c);
+  auto col = [&](const std::string& n) { return static_cast<int>(std::find(cols.begin(), cols.end(), n) - cols.begin()); };
+  const auto rows = read_csv(dir + "/out/time_history.csv");
+  ASSERT_GT(rows.size(), 3000u);
+  const auto& last = rows.back();
+  const double t1 = last[col("damper1_target1_in")], t2 = last[col("damper1_target2_in")];
+  const double x1 = last[col("damper1_actuator1_in")], x2 = last[col("damper1_actuator2_in")];
+  std::printf("passive_on through the rig: targets %.4f %.4f in, rig actuators at %.4f %.4f in (x' 0.655 0.8559)\n", t1, t2,
+              x1, x2);
+  EXPECT_LT(t1, 0.655 - 0.02);  // passive_on retracts both actuators
+  EXPECT_NEAR(x1, t1, 0.002);   // the rig's actuators got there (noise 0.0002 in std)
+  EXPECT_NEAR(x2, t2, 0.002);
+  // Every command the rig received was accepted and inside the limits.
+  const auto log = read_rig_log(dir + "/out/rig-commands.csv");
+  ASSERT_GT(log.size(), 1000u);
+  for (const auto& row : log) {
+    ASSERT_EQ(row.verdict, "accepted") << row.reason;
+    ASSERT_GE(row.a1, 0.30);
+  }
+}
+
+TEST(PhysicalSystem, ControlCommandBeyondTheActuatorStrokeIsCutByTheSafetyLayer) {
+  const std::string dir = test_support::fresh_temp_dir("control-stroke");
+  // The controller is told its actuators reach 0.0 in with no force limit: passive_on then
+  // targets x1 = 0.0 in, far beyond the safety layer's actuator_min_in 0.30 in.
+  const auto r = hybridsim_run(write_controlled_config(dir, 4.0, "passive_on", [](YAML::Node& m) {
+    m["electric_actuators"]["min_in"] = 0.0;
+    m["electric_actuators"]["force_limit_lb"] = 1e6;
+  }));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const json summary = read_json(dir + "/out/summary.json");
+  const json safety = read_json(dir + "/out/safety.json");
+  const std::string error = summary.value("error", std::string());
+  EXPECT_NE(error.find("safety trip"), std::string::npos) << error;
+  EXPECT_NE(error.find("electric actuator stroke limit"), std::string::npos) << error;
+  EXPECT_EQ(safety.value("status", std::string()), "tripped");
+  // Nothing beyond the stroke reached the rig; it was held, ramped to the safe state, ended.
+  const auto log = read_rig_log(dir + "/out/rig-commands.csv");
+  ASSERT_GT(log.size(), 100u);
+  double lowest = 1e9;
+  bool held = false;
+  for (const auto& row : log) {
+    EXPECT_EQ(row.verdict, "accepted") << row.reason;
+    lowest = std::min({lowest, row.a1, row.a2});
+    held = held || row.mode == kModeHold;
+  }
+  std::printf("stroke cut: lowest actuator command the rig received %.4f in (limit 0.30); %s\n", lowest,
+              safety.value("reason", std::string()).c_str());
+  EXPECT_GE(lowest, 0.30);
+  EXPECT_TRUE(held);
+  EXPECT_EQ(log.back().mode, kModeEnd);
+  EXPECT_NEAR(log.back().a1, 0.655, 1e-9);  // the safe state: x'
+  EXPECT_EQ(read_json(dir + "/out/rig-summary.json").value("out_of_limit_received", -1L), 0);
 }
 
 TEST(PhysicalSystem, RigReplaysAMeasuredTest) {
