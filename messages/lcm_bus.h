@@ -1,7 +1,8 @@
 #pragma once
 /// @file lcm_bus.h
 /// LCM plumbing shared by hybridsim, brfd-substructure and brfd-rig:
-///  - strict decoding (a hash mismatch is a DecodeError naming the channel),
+///  - the errors of the transport (DecodeError, TransportError; strict decoding itself is
+///    messages::decode_message in transport.h),
 ///  - the network rule: udpm traffic only inside a private network namespace unless the
 ///    config says the URL is a lab network (see ../shared/docs/lcm-transport.md),
 ///  - the channel names of one run.
@@ -26,18 +27,8 @@ class TransportError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Decodes an LCM message of type T; throws DecodeError naming the channel and the type.
-template <class T>
-T decode(const lcm::ReceiveBuffer& buffer, const std::string& channel) {
-  T msg;
-  if (msg.decode(buffer.data, 0, buffer.data_size) < 0) {
-    throw DecodeError("LCM channel '" + channel + "': cannot decode a " + T::getTypeName() +
-                      " (" + std::to_string(buffer.data_size) +
-                      " bytes): type hash mismatch or truncated message; are both processes "
-                      "built from the same messages/*.lcm?");
-  }
-  return msg;
-}
+// Strict decoding and publishing live in messages/transport.h (decode_message,
+// subscribe_message, publish_message): one place for every process.
 
 /// True when this process's network namespace has no device but loopback, i.e. multicast
 /// cannot leave the machine.

@@ -3,6 +3,7 @@
 #include "hybrid_lcm/drift_command_t.hpp"
 #include "hybrid_lcm/force_feedback_t.hpp"
 #include "hybrid_lcm/heartbeat_t.hpp"
+#include "messages/transport.h"
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
 #include "server/run/substructure_session.h"
@@ -150,9 +151,11 @@ TEST(Messages, HashMismatchIsAnErrorNamingTheChannel) {
   hb.sender = "test";
   std::vector<uint8_t> bytes(static_cast<std::size_t>(hb.getEncodedSize()));
   hb.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  lcm::ReceiveBuffer buffer{bytes.data(), static_cast<uint32_t>(bytes.size()), 0};
+  const std::string channel = "BRFD_FORCE_FEEDBACK";
+  const messages::RawMessage m{channel, bytes.data(), bytes.size(), 0};
   try {
-    messages::decode<hybrid_lcm::force_feedback_t>(buffer, "BRFD_FORCE_FEEDBACK");
+    hybrid_lcm::force_feedback_t fb;
+    messages::decode_message(m, fb);
     FAIL() << "a heartbeat decoded as force feedback";
   } catch (const messages::DecodeError& e) {
     EXPECT_NE(std::string(e.what()).find("BRFD_FORCE_FEEDBACK"), std::string::npos) << e.what();
