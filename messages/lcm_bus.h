@@ -27,7 +27,7 @@ class TransportError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Strict decoding and publishing live in messages/transport.h (decode_message,
+// Strict decoding and publishing live in messages/transport.h (decode_message, decode,
 // subscribe_message, publish_message): one place for every process.
 
 /// True when this process's network namespace has no device but loopback, i.e. multicast

@@ -159,6 +159,14 @@ void decode_message(const RawMessage& m, T& msg) {
   }
 }
 
+/// The same for code that holds a liblcm ReceiveBuffer (one implementation: decode_message).
+template <class T>
+T decode(const lcm::ReceiveBuffer& buffer, const std::string& channel) {
+  T msg;
+  decode_message(RawMessage{channel, static_cast<const uint8_t*>(buffer.data), buffer.data_size, buffer.recv_utime}, msg);
+  return msg;
+}
+
 /// Subscribes to `channel` with strict decoding into `scratch` (which must outlive the
 /// subscription; reusing it keeps the receive path allocation-free), then calls
 /// `on_message(scratch, message)`. A message that does not decode goes to `on_error` with the
