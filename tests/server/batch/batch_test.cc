@@ -697,15 +697,21 @@ TEST(Batch, ParallelRunsDoNotHearEachOther) {
       ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "intruder process failed";
       const long answered = std::stol(test_support::read_text(dir + "/" + name + ".intruder"));
       std::printf("%s: the intruder answered %ld drift commands with 999 kip\n", name.c_str(), answered);
-      // Real time: the intruder thread answers the drift commands it hears while the runs go
-      // (2 x 3072 of them); 1000 leaves a 6x margin for a descheduled thread on a loaded machine.
-      EXPECT_GT(answered, 1000);
       const Attempt a = check_runs(name, test_support::read_text(dir + "/" + name + ".out"), -1);
       EXPECT_EQ(a.info[0].at("channel_prefix"), a.info[1].at("channel_prefix"));
+      const long proved_before = heard_and_ok;
       for (std::size_t k = 0; k < 2; ++k) {
         std::printf("  %s: %s, heard %ld messages of its own run, %ld of others\n", two[k].c_str(),
                     a.ok[k] ? "ok, equal to the run alone" : "lost a datagram", a.logs[k].own, a.logs[k].foreign);
         if (a.ok[k] && a.logs[k].foreign > 1000) ++heard_and_ok;
+      }
+      // Real time: in the attempt that proves the filter, the intruder thread answered the drift
+      // commands it heard while the runs went (2 x 3072 of them); 1000 leaves a 6x margin for a
+      // descheduled thread. An attempt that lost a datagram ends its runs early, so its
+      // intruder answered fewer: it is repeated, not judged (a busy flake-check pass measured
+      // 614 in such an attempt, 3105 in the one that completed).
+      if (heard_and_ok > proved_before) {
+        EXPECT_GT(answered, 1000);
       }
     }
     EXPECT_GT(heard_and_ok, 0) << "no run completed amid foreign traffic: the test proves nothing";
