@@ -45,9 +45,16 @@ void LcmTransport::publish(const std::string& channel, const uint8_t* data, std:
 
 void LcmTransport::subscribe(const std::string& channel, RawHandler handler) {
   subscriptions_.push_back(Subscription{this, std::move(handler)});
-  if (!lcm_->subscribe(channel, &Subscription::on_message, &subscriptions_.back())) {
+  lcm::Subscription* s = lcm_->subscribe(channel, &Subscription::on_message, &subscriptions_.back());
+  if (!s) {
     subscriptions_.pop_back();
     throw TransportError("LCM subscribe failed on channel '" + channel + "' (URL " + url_ + ")");
+  }
+  // liblcm keeps at most 30 undispatched messages per subscription by default and drops the
+  // rest silently: a process descheduled for ~30 ms at 1024 messages/s (or a flood on a shared
+  // channel) loses messages. Keep up to kQueueCapacity (2 s of 1024 Hz traffic) instead.
+  if (s->setQueueCapacity(kQueueCapacity) != 0) {
+    throw TransportError("LCM: cannot set the queue capacity of channel '" + channel + "' (URL " + url_ + ")");
   }
 }
 

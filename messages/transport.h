@@ -116,6 +116,9 @@ class LcmTransport : public LcmInterface {
   int64_t utime() const override { return now_utime(); }
 
   const std::string& url() const { return url_; }
+  /// Undispatched messages kept per subscription (liblcm's default is 30; older ones are
+  /// dropped beyond it).
+  static constexpr int kQueueCapacity = 2048;
   /// The liblcm object, for what the interface does not cover (log files use their own API).
   lcm::LCM& raw() { return *lcm_; }
 
