@@ -149,6 +149,8 @@ class SimServer : public messages::LoopActor {
     command_.num_dampers = 1;
     command_.drift_in = {target_in(t)};
     command_.drift_velocity_in_per_s = {(target_in(t) - target_in(t - kDt)) / kDt};
+    command_.actuator1_target_in = {0.655};   // passive run: x'_1, x'_2 of brfd-default.yaml
+    command_.actuator2_target_in = {0.8559};
     command_.actuator_targets_valid = 0;  // hold x'
     command_.actuator1_target_in = {0.0};
     command_.actuator2_target_in = {0.0};

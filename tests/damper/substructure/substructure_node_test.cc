@@ -70,6 +70,9 @@ struct Harness {
     c.num_dampers = 2;
     c.drift_in = {d1, -0.5 * d1};
     c.drift_velocity_in_per_s = {v1, -0.5 * v1};
+    // Passive run: the electric actuators held at x'_1, x'_2 (the control issue's targets).
+    c.actuator1_target_in.assign(2, o.model.semiactive.actuator1_initial_in);
+    c.actuator2_target_in.assign(2, o.model.semiactive.actuator2_initial_in);
     messages::publish_message(*server, ch.drift_command(), c);
   }
   /// Runs the node until `done` or `for_s` of simulated time.
