@@ -6,7 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
@@ -19,11 +21,22 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
     throw std::runtime_error("cannot start '" + executable + "': not an executable file");
   }
   const pid_t parent = getpid();
+  // exec() failures come back through this pipe; on success exec closes it (O_CLOEXEC).
+  int report[2];
+  if (pipe2(report, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed for '" + executable + "'");
   pid_ = fork();
-  if (pid_ < 0) throw std::runtime_error("fork failed for '" + executable + "'");
+  if (pid_ < 0) {
+    close(report[0]);
+    close(report[1]);
+    throw std::runtime_error("fork failed for '" + executable + "'");
+  }
   if (pid_ == 0) {
+    close(report[0]);
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
+    // The parent's SIGINT/SIGTERM handlers do not survive exec, but an ignored signal would.
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     if (!log_path.empty()) {
       const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
       if (fd >= 0) {
@@ -37,7 +50,24 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     execv(executable.c_str(), argv.data());
+    const int err = errno;
+    if (write(report[1], &err, sizeof err) < 0) {
+      // nothing more to tell
+    }
     _exit(127);
+  }
+  close(report[1]);
+  int child_errno = 0;
+  ssize_t got;
+  do {
+    got = read(report[0], &child_errno, sizeof child_errno);
+  } while (got < 0 && errno == EINTR);
+  close(report[0]);
+  if (got == static_cast<ssize_t>(sizeof child_errno)) {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    throw std::runtime_error("cannot start '" + executable + "': " + std::strerror(child_errno));
   }
 }
 

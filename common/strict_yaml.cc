@@ -1,6 +1,8 @@
 #include "common/strict_yaml.h"
 
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <sstream>
 
 namespace common {
@@ -11,17 +13,35 @@ YamlSection::YamlSection(YAML::Node node, std::string file, std::string path)
     throw ConfigError(file_ + where(node_) + ": " + (path_.empty() ? "top level" : path_) +
                       ": expected a mapping of keys");
   }
+  // yaml-cpp keeps both entries of a duplicated key and reads the first: refuse it, naming
+  // both lines, so that an edit lower in the file never goes silently unused.
+  std::map<std::string, int> first_line;
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string key = kv.first.Scalar();
+    const int line = kv.first.Mark().line + 1;
+    const auto [it, inserted] = first_line.emplace(key, line);
+    if (!inserted) {
+      throw ConfigError(file_ + where(kv.first) + ": " + key_path(key) + ": duplicated key (first given on line " +
+                        std::to_string(it->second) + ")");
+    }
+  }
 }
 
 YamlSection YamlSection::load_file(const std::string& file) {
   YAML::Node root;
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw ConfigError(file + ": is a folder, not a config file");
   try {
     root = YAML::LoadFile(file);
   } catch (const YAML::BadFile&) {
     throw ConfigError(file + ": cannot open config file");
   } catch (const YAML::Exception& e) {
     throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": invalid YAML: " + e.msg);
+  } catch (const std::exception& e) {  // e.g. std::ios_base::failure on an unreadable file
+    throw ConfigError(file + ": cannot read config file: " + e.what());
   }
+  if (!root || root.IsNull()) throw ConfigError(file + ": empty config file");
   return YamlSection(root, file, "");
 }
 
@@ -32,6 +52,11 @@ std::string YamlSection::where(const YAML::Node& n) const {
 
 std::string YamlSection::key_path(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
+}
+
+std::string YamlSection::location(const std::string& key) const {
+  YAML::Node n = node_[key];
+  return file_ + (n ? where(n) : where(node_));
 }
 
 void YamlSection::fail(const std::string& key, const std::string& message) const {

@@ -54,6 +54,8 @@ class YamlSection {
   std::vector<YamlSection> section_list(const std::string& key) const;
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+  /// "file:line" of `key` (of this mapping if the key is absent), for checks made later.
+  std::string location(const std::string& key) const;
   const YAML::Node& node() const { return node_; }
   const std::string& file() const { return file_; }
   /// Key path of this section ("" at the top level) joined with `key`.

@@ -1,9 +1,14 @@
 #include "structure/ground_motion.h"
 
+#include "common/resource_limits.h"
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -88,16 +93,34 @@ bool blank(const std::string& line) {
   return line.find_first_not_of(" \t\r\v\f") == std::string::npos;
 }
 
-GroundMotion read_at2(const std::vector<std::string>& lines, const std::string& path,
-                      long npts, double dt) {
-  if (npts < 2) throw RecordError(where(path, 4) + ": NPTS must be >= 2, got " + std::to_string(npts));
-  if (!(dt > 0.0) || !std::isfinite(dt)) {
-    throw RecordError(where(path, 4) + ": DT must be finite and > 0");
+void check_dt(double dt, const std::string& at) {
+  if (!std::isfinite(dt) || dt < kMinRecordDt_s || dt > kMaxRecordDt_s) {
+    std::ostringstream msg;
+    msg << at << ": DT = " << dt << " s is outside [" << kMinRecordDt_s << ", " << kMaxRecordDt_s
+        << "] s (a record's sample interval)";
+    throw RecordError(msg.str());
   }
+}
+
+GroundMotion read_at2(const std::vector<std::string>& lines, const std::string& path,
+                      long npts, double dt, std::size_t data_chars, const std::string& npts_text) {
+  if (npts < 2) throw RecordError(where(path, 4) + ": NPTS must be >= 2, got " + std::to_string(npts));
+  if (npts > kMaxRecordSamples) {
+    throw RecordError(where(path, 4) + ": NPTS = " + npts_text + " exceeds the limit of " +
+                      std::to_string(kMaxRecordSamples) + " samples per record");
+  }
+  const double bytes = 8.0 * static_cast<double>(npts);
+  if (bytes > 0.5 * static_cast<double>(common::available_memory_bytes())) {
+    throw RecordError(where(path, 4) + ": NPTS = " + std::to_string(npts) + " needs " + common::format_bytes(bytes) +
+                      ", more than half of the available memory (" +
+                      common::format_bytes(static_cast<double>(common::available_memory_bytes())) + ")");
+  }
+  check_dt(dt, where(path, 4));
   GroundMotion gm;
   gm.source = path;
   gm.dt_s = dt;
-  gm.accel_g.reserve(static_cast<std::size_t>(npts));
+  // A value takes at least one character: never reserve more than the file can hold.
+  gm.accel_g.reserve(std::min(static_cast<std::size_t>(npts), data_chars));
   for (std::size_t i = 4; i < lines.size(); ++i) {
     const std::vector<double> values = parse_numbers(lines[i], path, i + 1, false);
     gm.accel_g.insert(gm.accel_g.end(), values.begin(), values.end());
@@ -148,6 +171,7 @@ GroundMotion read_two_column(const std::vector<std::string>& lines, const std::s
     }
   }
   const double dt = (time_s.back() - time_s.front()) / static_cast<double>(n - 1);
+  check_dt(dt, path + " (time column)");
   if (std::abs(time_s.front()) > 0.01 * dt) {
     std::ostringstream msg;
     msg << where(path, line_of.front()) << ": the first time must be 0 s, got " << time_s.front() << " s";
@@ -168,6 +192,13 @@ GroundMotion read_ground_motion(const std::string& path, double scale) {
     msg << path << ": scale factor must be finite and > 0, got " << scale;
     throw RecordError(msg.str());
   }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw RecordError(path + ": is a folder, not a ground-motion record");
+  const auto file_bytes = std::filesystem::file_size(path, ec);
+  if (!ec && static_cast<double>(file_bytes) > 0.25 * static_cast<double>(common::available_memory_bytes())) {
+    throw RecordError(path + ": the file (" + common::format_bytes(static_cast<double>(file_bytes)) +
+                      ") is larger than a quarter of the available memory; not a usable record");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw RecordError(path + ": cannot open ground-motion record");
   std::vector<std::string> lines;
@@ -184,14 +215,18 @@ GroundMotion read_ground_motion(const std::string& path, double scale) {
   if (lines.size() >= 4) {
     std::smatch m;
     if (std::regex_search(lines[3], m, hdr_a) || std::regex_search(lines[3], m, hdr_b)) {
-      const long npts = std::strtol(m[1].str().c_str(), nullptr, 10);
+      errno = 0;
+      long npts = std::strtol(m[1].str().c_str(), nullptr, 10);
+      if (errno == ERANGE) npts = std::numeric_limits<long>::max();
       char* dt_end = nullptr;
       const std::string dt_text = m[2].str();
       const double dt = std::strtod(dt_text.c_str(), &dt_end);
       if (dt_end != dt_text.c_str() + dt_text.size()) {
         throw RecordError(where(path, 4) + ": cannot read DT '" + dt_text + "'");
       }
-      GroundMotion gm = read_at2(lines, path, npts, dt);
+      std::size_t data_chars = 0;
+      for (std::size_t i = 4; i < lines.size(); ++i) data_chars += lines[i].size();
+      GroundMotion gm = read_at2(lines, path, npts, dt, data_chars, m[1].str());
       gm.scale = scale;
       for (double& a : gm.accel_g) a *= scale;
       return gm;

@@ -13,6 +13,15 @@ namespace structure {
 /// Standard gravity in in/s² (9.80665 m/s² / 0.0254 m/in = 386.0886 in/s²).
 constexpr double kGravity_in_per_s2 = 386.09;
 
+/// Sample intervals a record may have: 10 µs (100 kHz) to 1 s. Outside this a DT is a typo or
+/// a unit error (ms for s), not an earthquake record.
+constexpr double kMinRecordDt_s = 1e-5;
+constexpr double kMaxRecordDt_s = 1.0;
+/// Most samples a record may hold: 5·10^7 (400 MB of doubles, 69 h at 200 Hz). NPTS above
+/// this, or above what the file's size or the machine's available memory can hold, is refused
+/// before anything is allocated.
+constexpr long kMaxRecordSamples = 50'000'000;
+
 /// A uniformly sampled ground-acceleration record: sample k is at t = k·dt_s.
 struct GroundMotion {
   std::string source;           ///< file it was read from (or a description)
@@ -43,7 +52,8 @@ class RecordError : public std::runtime_error {
 ///    The number of values must equal NPTS.
 ///  - Two columns: time (s) and acceleration (g) per line, separated by whitespace or a comma;
 ///    blank lines and `#` comments allowed; the time step must be uniform and start at t = 0.
-/// Non-numeric tokens, NaN and infinite values are rejected.
+/// Non-numeric tokens, NaN and infinite values are rejected. DT must lie in
+/// [kMinRecordDt_s, kMaxRecordDt_s]; NPTS at most kMaxRecordSamples and what fits in memory.
 /// @param scale multiplies every value; must be finite and > 0.
 /// @throws RecordError naming the file (and line) if the file is missing, of unknown format,
 ///         truncated (NPTS mismatch: expected and actual counts), has a non-numeric token, a

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -106,14 +107,17 @@ std::vector<double> derive_velocity(const std::vector<double>& disp_in, double d
 }
 
 BrfdTest read_brfd_test(const std::string& path, const BrfdReadOptions& opt) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw BrfdDataError(path + ": is a folder, not a BRFD data file");
   std::ifstream in(path);
   if (!in) throw BrfdDataError(path + ": cannot open BRFD data file");
   std::stringstream buffer;
   buffer << in.rdbuf();
+  if (in.bad()) throw BrfdDataError(path + ": read error");
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(quote_nonfinite_tokens(buffer.str()));
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range (1e999)
     throw BrfdDataError(path + ": invalid JSON: " + e.what());
   }
   if (!doc.is_object()) throw BrfdDataError(path + ": top level must be a JSON object with key \"data\"");
@@ -160,6 +164,12 @@ BrfdTest read_brfd_test(const std::string& path, const BrfdReadOptions& opt) {
       if (!std::isfinite(x))
         throw BrfdDataError(path + ": row " + std::to_string(r) + ", " + column_label(ncol, c) +
                             ": not a finite number");
+      if (std::abs(x) > kMaxBrfdDataMagnitude) {
+        std::ostringstream o;
+        o << path << ": row " << r << ", " << column_label(ncol, c) << ": " << x
+          << " is beyond any measurement of the rig (|value| > " << kMaxBrfdDataMagnitude << ")";
+        throw BrfdDataError(o.str());
+      }
       cols[c][r] = x;
     }
   }

@@ -26,6 +26,10 @@
 
 namespace damper {
 
+/// Largest magnitude a value of a data file may have (s, in, kip, lb alike): 10^9. Larger
+/// values are no measurement and overflow the error sums (a 1e300 kip force gave nrmse=inf).
+constexpr double kMaxBrfdDataMagnitude = 1e9;
+
 /// A user-input error in a BRFD data file.
 class BrfdDataError : public std::runtime_error {
  public:

@@ -160,6 +160,25 @@ PredictResult run_predict(const PredictOptions& opt) {
   r.measured_kip = test.force_kip;
   r.predicted_kip = replay_force_kip(params, test, 0, test.size(), opt.identification.replay);
   r.metrics = force_error(r.measured_kip, r.predicted_kip, 0, test.size());
+  // A finite file can still give a meaningless answer (a 1e300 kip force overflows the
+  // error sums): refuse it as input, never print nrmse=inf as a result.
+  for (std::size_t i = 0; i < r.predicted_kip.size(); ++i) {
+    if (!std::isfinite(r.predicted_kip[i])) {
+      throw BrfdDataError(test.path + ": the predicted force is not finite from row " + std::to_string(i) +
+                          " on (t = " + std::to_string(test.time_s[i]) +
+                          " s): the test's values are outside the model's physical range");
+    }
+  }
+  if (!std::isfinite(r.metrics.rmse_kip) || !std::isfinite(r.metrics.nrmse_std) ||
+      !std::isfinite(r.metrics.nrmse_range)) {
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < test.size(); ++i)
+      if (std::abs(test.force_kip[i]) > std::abs(test.force_kip[worst])) worst = i;
+    std::ostringstream o;
+    o << test.path << ": the error metrics are not finite: measured force " << test.force_kip[worst]
+      << " kip at row " << worst << " is outside any physical range";
+    throw BrfdDataError(o.str());
+  }
   const std::size_t after = index_at_time(test, r.fit_t1_s);
   if (r.fitted && after + 100 < test.size())
     r.metrics_after_fit = force_error(r.measured_kip, r.predicted_kip, after, test.size());

@@ -21,8 +21,15 @@ int main(int argc, char** argv) {
   app.add_option("--key-file", o.key_file, "HMAC key file (64 hex characters, mode 0600)");
   app.add_option("--log-dir", o.log_dir, "folder for rig-commands.csv and rig-summary.json");
   app.add_flag("--lab-network", o.lab_network, "the URL is a lab network: allow multicast outside a netns");
-  CLI11_PARSE(app, argc, argv);
+  // Exit codes as hybridsim's (README "Exit codes"): a command-line error is bad input, 2.
   try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (app.count("--run-id") > 0 && o.run_id.empty())
+      throw std::invalid_argument("--run-id: must not be empty (omit it to answer any run)");
     o.config = damper::rig::load_rig_config(config_path);
     if (check_only) {
       std::cout << damper::rig::rig_config_to_yaml(o.config);

@@ -27,8 +27,15 @@ int main(int argc, char** argv) {
   app.add_option("--physical-config", physical_config, "physical mode: the run config's rig block (physical.yaml)");
   app.add_option("--key-file", p.key_file, "physical mode: HMAC key file of the actuator commands");
   app.add_option("--results-dir", p.results_dir, "physical mode: where physical.csv, tracking.json, safety.json go");
-  CLI11_PARSE(app, argc, argv);
+  // Exit codes as hybridsim's (README "Exit codes"): a command-line error is bad input, 2.
   try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (app.count("--run-id") > 0 && o.run_id.empty())
+      throw std::invalid_argument("--run-id: must not be empty (omit it to answer any run)");
     if (!o.echo) {
       if (model_config.empty()) throw std::invalid_argument("--model-config is required (except with --echo)");
       o.model = damper::load_brfd_params(model_config);

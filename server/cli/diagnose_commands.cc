@@ -1,5 +1,8 @@
 #include "server/cli/diagnose_commands.h"
 
+#include "common/run_guard.h"
+#include "common/strict_yaml.h"
+#include "damper/data/brfd_data.h"
 #include "damper/diagnose/diagnose.h"
 #include "damper/diagnose/diagnose_bench.h"
 
@@ -106,9 +109,18 @@ void add_diagnose_commands(CLI::App& app) {
       std::cout << damper::diagnose_confidence_line(r) << "\n" << damper::diagnose_final_line(r) << std::endl;
     } catch (const CLI::Error&) {
       throw;
+    } catch (const damper::BrfdDataError& e) {  // bad input: exit 2 (README "Exit codes")
+      std::cerr << "error: " << e.what() << std::endl;
+      throw CLI::RuntimeError(common::kExitBadInput);
+    } catch (const common::ConfigError& e) {
+      std::cerr << "error: " << e.what() << std::endl;
+      throw CLI::RuntimeError(common::kExitBadInput);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "error: " << e.what() << std::endl;
+      throw CLI::RuntimeError(common::kExitBadInput);
     } catch (const std::exception& e) {
       std::cerr << "error: " << e.what() << std::endl;
-      throw CLI::RuntimeError(1);
+      throw CLI::RuntimeError(common::kExitRunFailed);
     }
   });
 }

@@ -13,6 +13,8 @@
 #include "server/cli/ida_commands.h"
 #include "server/cli/diagnose_commands.h"
 
+#include "common/run_guard.h"
+
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -46,13 +48,18 @@ int main(int argc, char** argv) {
   int code = 0;
   run->callback([&] { code = server::run_command(config_path, out_dir, quiet, run_duration_s); });
   bench->callback([&] { code = server::bench_command(bench_options); });
+  // Exit codes (README "Exit codes", common/run_guard.h): 0 ok, 1 run failed, 2 bad input
+  // (a command-line error included), 130/143 interrupted by SIGINT/SIGTERM.
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::RuntimeError& e) {  // a command's own exit code (0, 1, 2, 130, 143)
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);  // prints the message (or the help)
+    return rc == 0 ? common::kExitOk : common::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "hybridsim: " << e.what() << "\n";
-    return 2;
+    return common::kExitBadInput;
   }
   return code;
 }

@@ -1,5 +1,7 @@
 #include "server/run/hybrid_run.h"
 
+#include "common/atomic_file.h"
+#include "common/run_guard.h"
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
 #include "damper/physical/run_key.h"
@@ -92,7 +94,9 @@ void report_physical(const fs::path& out, const std::string& summary_path, bool 
     if (fs::exists(out / "tracking.json")) std::ifstream(out / "tracking.json") >> tracking;
     if (fs::exists(out / "safety.json")) std::ifstream(out / "safety.json") >> safety;
     summary["physical"] = {{"tracking", tracking}, {"safety", safety}};
-    std::ofstream(summary_path) << std::setw(2) << summary << "\n";
+    std::ostringstream text;
+    text << std::setw(2) << summary << "\n";
+    common::write_file_atomic(summary_path, text.str());
     if (!tracking.is_null() && !quiet) {
       std::cout << std::setprecision(4) << "tracking: delay " << tracking.value("delay_ms", 0.0) << " ms, NRMS error "
                 << tracking.value("nrms_error_pct", 0.0) << " %, peak error " << tracking.value("peak_error_in", 0.0)
@@ -119,8 +123,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   const int n = building.num_stories();
   const int nd = building.num_dampers();
   const double dt = config.dt_s;
-  const double duration = config.record.duration_s > 0 ? config.record.duration_s : record.duration_s();
-  const long num_steps = static_cast<long>(std::floor(duration / dt + 1e-9));
+  const long num_steps = check_run_against_record(config, record.dt_s, record.duration_s(), record.source);
   const Eigen::MatrixXd& gamma = building.damper_gamma();
 
   RunSummary s;
@@ -222,6 +225,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     write_row(0.0, ag);
     if (response) record_history(0.0);
     for (long i = 0; i < num_steps; ++i) {
+      common::throw_if_interrupted();  // SIGINT/SIGTERM: stop here, rows so far are kept
       const double t_next = (i + 1) * dt;
       cr.predict();  // x₊, v₊ explicit: known before the damper force is needed
       drum.noalias() = gamma.transpose() * cr.next_displacement_in();
@@ -249,6 +253,13 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       }
       ag = record.accel_in_per_s2(t_next);
       cr.complete(ag, force);
+      if (!cr.displacement_in().allFinite() || !cr.velocity_in_per_s().allFinite() || !force.allFinite()) {
+        std::ostringstream msg;
+        msg << "physics check: non-finite " << (force.allFinite() ? "building state" : "damper force")
+            << " at step " << i + 1 << " (t = " << t_next
+            << " s); the run is numerically unstable (check masses, stiffnesses, dt_s and the record scale)";
+        throw std::runtime_error(msg.str());
+      }
       energy.add_step(dt, cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
       damper_power = force.cwiseProduct(drum_vel);  // committed velocity is v₊: drum_vel still holds Γᵀv₊
       energy_per_damper += 0.5 * dt * (damper_power + damper_power_prev);
@@ -270,6 +281,14 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       if ((i + 1) % config.output.flush_every_steps == 0) history.hand_over();
     }
     substructure.stop(false, "record finished");
+  } catch (const common::Interrupted& e) {
+    s.status = "interrupted";
+    s.signal = e.signal();
+    s.error = std::string(e.what()) + " after step " + std::to_string(s.steps);
+    try {
+      substructure.stop(true, s.error);
+    } catch (const std::exception&) {
+    }
   } catch (const std::exception& e) {
     s.status = "failed";
     s.error = e.what();
@@ -321,6 +340,26 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     s.uncontrolled_peak_base_shear_kip = ref.peak_base_shear_kip();
     s.peak_base_shear_kip = stats.peak_base_shear_kip();
   }
+  if (s.status == "ok") {
+    // Physics sanity: every reported figure finite, the energy balance closed.
+    const bool finite = s.peak_drift_in.allFinite() && s.residual_drift_in.allFinite() &&
+                        s.peak_floor_accel_g.allFinite() && s.peak_force_kip.allFinite() &&
+                        s.damper_energy_kip_in.allFinite() && std::isfinite(s.input_energy_kip_in) &&
+                        std::isfinite(s.kinetic_energy_kip_in) && std::isfinite(s.strain_energy_kip_in) &&
+                        std::isfinite(s.inherent_damping_energy_kip_in) && std::isfinite(s.energy_balance_error);
+    std::ostringstream msg;
+    msg << std::setprecision(4);
+    if (!finite) {
+      s.status = "failed";
+      s.error = "physics check: non-finite results (peaks or energies); the run is numerically unstable";
+    } else if (s.energy_balance_error > config.max_energy_balance_error) {
+      msg << "physics check: energy balance error " << 100.0 * s.energy_balance_error
+          << " % exceeds run.max_energy_balance_error " << 100.0 * config.max_energy_balance_error
+          << " % (input " << s.input_energy_kip_in << " kip-in; implausible damper forces or dt_s too large)";
+      s.status = "failed";
+      s.error = msg.str();
+    }
+  }
   return s;
 }
 
@@ -332,6 +371,7 @@ void write_summary_json(const RunSummary& s, const RunConfig& config, const std:
   j["scale"] = config.record.scale;
   j["status"] = s.status;
   j["error"] = s.error;
+  if (s.signal != 0) j["signal"] = common::signal_name(s.signal);
   j["steps"] = s.steps;
   j["dt_s"] = config.dt_s;
   j["output_every_n_steps"] = config.output.every_n_steps;
@@ -372,8 +412,9 @@ void write_summary_json(const RunSummary& s, const RunConfig& config, const std:
                     {"actuator_max_in", to_json(s.actuator_max_in)},
                     {"controller_us_per_step", s.controller_us_per_step}};
   }
-  std::ofstream f(path);
-  f << std::setw(2) << j << "\n";
+  std::ostringstream text;
+  text << std::setw(2) << j << "\n";
+  common::write_file_atomic(path, text.str());
 }
 
 std::string format_summary(const RunSummary& s) {
@@ -407,6 +448,30 @@ std::string format_summary(const RunSummary& s) {
   return o.str();
 }
 
+const std::vector<std::string>& previous_run_files() {
+  static const std::vector<std::string> files{
+      "summary.json",   "time_history.csv", "effective-config.yaml", "damper-model.yaml", "run.lcmlog",
+      "substructure.log", "physical.yaml",  "physical.csv",          "tracking.json",     "safety.json",
+      "run.key",        "rig.log",          "rig-samples.csv", "time_history.h5"};
+  return files;
+}
+
+namespace {
+
+/// Removes an earlier run's files from `out` (only the names a run writes; anything else in
+/// the folder is left alone). `keep` is a file the config points at (rig.key_file).
+void clear_previous_run(const fs::path& out, const std::string& keep) {
+  std::error_code ec;
+  for (const std::string& name : previous_run_files()) {
+    const fs::path p = out / name;
+    if (!keep.empty() && fs::equivalent(p, keep, ec)) continue;
+    fs::remove(p, ec);
+    if (ec) throw std::runtime_error("cannot remove " + p.string() + " of an earlier run: " + ec.message());
+  }
+}
+
+}  // namespace
+
 int run_command(const std::string& config_path, const std::string& output_dir_override, bool quiet,
                 double duration_override_s) {
   RunConfig config;
@@ -414,17 +479,30 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     config = load_run_config(config_path);
     if (!output_dir_override.empty()) config.output.dir = output_dir_override;
     if (duration_override_s > 0.0) config.record.duration_s = duration_override_s;
-    structure::read_ground_motion(config.record.path, config.record.scale);  // fail early on a bad record
+    // Fail early on a bad record, and on a run that does not fit the record or the disk.
+    const structure::GroundMotion record = structure::read_ground_motion(config.record.path, config.record.scale);
+    check_run_against_record(config, record.dt_s, record.duration_s(), record.source);
     structure::ShearBuilding check(config.building);
   } catch (const std::exception& e) {
     std::cerr << "hybridsim run: " << e.what() << "\n";
-    return 2;
+    return common::kExitBadInput;
   }
-  fs::create_directories(config.output.dir);
   const fs::path out(config.output.dir);
-  {
-    std::ofstream eff(out / "effective-config.yaml");
-    eff << run_config_to_yaml(config);
+  // One run per folder: the lock is held until this process exits (also on a crash).
+  common::FolderLock lock;
+  try {
+    lock = common::FolderLock(config.output.dir);
+    clear_previous_run(out, config.rig.rig.key_file);
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: " << e.what() << "\n";
+    return common::kExitBadInput;
+  }
+  common::install_interrupt_handlers();
+  try {
+    common::write_file_atomic((out / "effective-config.yaml").string(), run_config_to_yaml(config));
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: " << e.what() << "\n";
+    return common::kExitRunFailed;
   }
   const std::string run_id = make_run_id(config.name);
   const bool physical = config.damper.mode == "physical";
@@ -433,12 +511,17 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     // Check the emulator's config before anything runs, and give the run its own HMAC key.
     const std::string check_log = (out / "rig.log").string();
     fs::remove(check_log);
-    ChildProcess check(sibling_executable(config.rig.rig.executable), {"--config", config.rig.rig.config, "--check-config"},
-                       check_log);
-    if (check.wait_or_kill(10.0) != 0) {
-      std::ifstream f(check_log);
-      std::cerr << "hybridsim run: rig emulator config " << config.rig.rig.config << " is not usable:\n" << f.rdbuf();
-      return 2;
+    try {
+      ChildProcess check(sibling_executable(config.rig.rig.executable),
+                         {"--config", config.rig.rig.config, "--check-config"}, check_log);
+      if (check.wait_or_kill(10.0) != 0) {
+        std::ifstream f(check_log);
+        std::cerr << "hybridsim run: rig emulator config " << config.rig.rig.config << " is not usable:\n" << f.rdbuf();
+        return common::kExitBadInput;
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "hybridsim run: rig emulator: " << e.what() << "\n";
+      return common::kExitBadInput;
     }
     fs::remove(check_log);
     if (config.rig.rig.key_file.empty()) {
@@ -446,7 +529,7 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
         damper::physical::write_key_file(physical_key_path(config, out.string()), damper::physical::generate_run_key());
       } catch (const std::exception& e) {
         std::cerr << "hybridsim run: " << e.what() << "\n";
-        return 2;
+        return common::kExitBadInput;
       }
     }
   }
@@ -456,19 +539,40 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     SubstructureSession session(config, out.string(), run_id);
     summary = run_hybrid(config, session.substructure(), run_id);
     for (const std::string& note : session.finish(summary.status == "ok")) std::cerr << "hybridsim run: " << note << "\n";
+  } catch (const common::Interrupted& e) {
+    summary.status = "interrupted";
+    summary.signal = e.signal();
+    summary.error = e.what();
   } catch (const std::exception& e) {
     summary.status = "failed";
     summary.error = e.what();
   }
-  write_summary_json(summary, config, (out / "summary.json").string());
+  if (summary.status == "ok" && common::interrupt_signal() != 0) {
+    // The signal came after the last step: the results are complete, but say so.
+    summary.signal = common::interrupt_signal();
+  }
+  try {
+    write_summary_json(summary, config, (out / "summary.json").string());
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim run: " << e.what() << "\n";
+    if (summary.status == "ok") {
+      summary.status = "failed";
+      summary.error = e.what();
+    }
+  }
   if (!quiet) std::cout << format_summary(summary);
   if (physical) report_physical(out, (out / "summary.json").string(), quiet);
   std::cout << "results: " << fs::weakly_canonical(fs::absolute(out)).string() << "\n";
+  if (summary.status == "interrupted") {
+    std::cerr << "hybridsim run: " << summary.error << "; rows up to step " << summary.steps << " are in "
+              << (out / "time_history.csv").string() << "\n";
+    return common::exit_code_for_signal(summary.signal);
+  }
   if (summary.status != "ok") {
     std::cerr << "hybridsim run: run failed: " << summary.error << "\n";
-    return 1;
+    return common::kExitRunFailed;
   }
-  return 0;
+  return common::kExitOk;
 }
 
 }  // namespace server

@@ -22,13 +22,15 @@
 #include <Eigen/Dense>
 
 #include <string>
+#include <vector>
 
 namespace server {
 
 /// What a run produced; written to summary.json as well.
 struct RunSummary {
-  std::string status = "ok";          ///< "ok" or "failed"
-  std::string error;                  ///< why it failed
+  std::string status = "ok";          ///< "ok", "failed" or "interrupted" (SIGINT/SIGTERM)
+  std::string error;                  ///< why it failed or stopped
+  int signal = 0;                     ///< the signal that interrupted the run (0: none)
   long steps = 0;                     ///< steps completed
   double sim_time_s = 0.0;            ///< simulated time reached
   double wall_s = 0.0;                ///< wall-clock time of the run, results on disk
@@ -59,7 +61,13 @@ struct RunSummary {
 
 /// Runs the step loop against `substructure` and writes results to config.output.dir.
 /// Never throws for a substructure failure: the summary says "failed" with the reason, and
-/// the time history up to the last completed step is on disk.
+/// the time history up to the last completed step is on disk. A SIGINT/SIGTERM noticed by
+/// common::interrupt_signal() stops the loop: status "interrupted", every row so far on disk.
+/// Physics sanity: a non-finite state stops the run at that step, and after the loop
+/// non-finite results or an energy balance error above config.max_energy_balance_error make
+/// the status "failed" with the reason.
+/// Throws common::ConfigError if the config does not fit the record
+/// (check_run_against_record).
 /// If `response` is given, every committed step (t, x, v, damper force) is also appended to
 /// it: this is how validation/ judges the real loop against the CVODE reference.
 RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const std::string& run_id,
@@ -67,12 +75,19 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
 
 /// `hybridsim run`: sets up transport (private network namespace, LCM, spawned
 /// substructure process) per the config, runs, prints the summary. Returns the exit code
-/// (0 ok, 1 run failed, 2 bad input).
+/// (common::ExitCode: 0 ok, 1 run failed, 2 bad input or results folder in use, 130/143
+/// interrupted by SIGINT/SIGTERM). The results folder is locked for the run
+/// (common::FolderLock) and cleared of an earlier run's files (previous_run_files()).
 /// duration_override_s > 0 replaces record.duration_s (`hybridsim run --duration`).
 int run_command(const std::string& config_path, const std::string& output_dir_override,
                 bool quiet, double duration_override_s = 0.0);
 
-/// Writes summary.json.
+/// Files a run writes into its folder (and nothing else): an earlier run's copies are
+/// removed before a new run starts, so no file of another run stands beside the new summary.
+const std::vector<std::string>& previous_run_files();
+
+/// Writes summary.json atomically (common::write_file_atomic); throws
+/// common::FileWriteError naming the file (e.g. on a full disk).
 void write_summary_json(const RunSummary& summary, const RunConfig& config, const std::string& path);
 /// Human-readable summary (the lines `hybridsim run` prints).
 std::string format_summary(const RunSummary& summary);

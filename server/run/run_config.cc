@@ -1,6 +1,7 @@
 #include "server/run/run_config.h"
 #include "common/number_format.h"
 
+#include "common/resource_limits.h"
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
 
@@ -27,15 +28,24 @@ RunConfig load_run_config(const std::string& path) {
   c.source_file = path;
 
   const common::YamlSection run = top.section("run");
-  run.allow_only({"name", "dt_s"});
+  run.allow_only({"name", "dt_s", "max_energy_balance_error"});
   c.name = run.get_string("name", c.name);
+  if (c.name.empty()) run.fail("name", "must not be empty (it names the run id and its LCM messages)");
+  if (c.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") !=
+          std::string::npos || c.name.size() > 64)
+    run.fail("name", "'" + c.name + "': use at most 64 letters, digits, '.', '_' or '-'");
   c.dt_s = run.get_double_in("dt_s", c.dt_s, 1e-6, 0.1);
+  c.max_energy_balance_error = run.get_double_in("max_energy_balance_error", c.max_energy_balance_error, 0.0, 10.0);
+  c.key_location["run.dt_s"] = run.location("dt_s");
 
   const common::YamlSection rec = top.section("record");
   rec.allow_only({"path", "scale", "duration_s"});
   c.record.path = resolve(path, rec.get_string("path"));
   c.record.scale = rec.get_double_in("scale", 1.0, 1e-6, 100.0);
   c.record.duration_s = rec.get_double("duration_s", -1.0);
+  if (c.record.duration_s == 0.0)
+    rec.fail("duration_s", "0 s would run no step: give the seconds to simulate (> 0), or < 0 for the whole record");
+  c.key_location["record.duration_s"] = rec.location("duration_s");
 
   c.building = structure::building_params_from_yaml(top.section("building"));
 
@@ -103,8 +113,58 @@ RunConfig load_run_config(const std::string& path) {
     c.output.dir = resolve(path, o.get_string("dir", c.output.dir));
     c.output.flush_every_steps = o.get_int("flush_every_steps", c.output.flush_every_steps);
     if (c.output.flush_every_steps < 1) o.fail("flush_every_steps", "must be >= 1");
+    c.key_location["output.dir"] = o.location("dir");
   }
   return c;
+}
+
+std::string RunConfig::at(const std::string& key) const {
+  const auto it = key_location.find(key);
+  return (it != key_location.end() ? it->second : source_file) + ": " + key + ": ";
+}
+
+long check_run_against_record(const RunConfig& c, double record_dt_s, double record_duration_s,
+                              const std::string& record_source) {
+  std::ostringstream msg;
+  msg << std::setprecision(10);
+  const double duration = c.record.duration_s;
+  if (duration == 0.0 || !std::isfinite(duration)) {
+    msg << c.at("record.duration_s") << duration
+        << " s: give the seconds to simulate (> 0), or < 0 for the whole record";
+    throw common::ConfigError(msg.str());
+  }
+  if (duration > record_duration_s * (1.0 + 1e-9) + 1e-12) {
+    msg << c.at("record.duration_s") << duration << " s is longer than the record " << record_source << " ("
+        << record_duration_s << " s); give at most " << record_duration_s << " s, or < 0 for the whole record";
+    throw common::ConfigError(msg.str());
+  }
+  if (c.dt_s > record_dt_s * (1.0 + 1e-9)) {
+    msg << c.at("run.dt_s") << c.dt_s << " s is larger than the sample interval of the record " << record_source
+        << " (DT = " << record_dt_s << " s): the step loop would skip record samples; use dt_s <= DT";
+    throw common::ConfigError(msg.str());
+  }
+  const double run_s = duration > 0 ? duration : record_duration_s;
+  const double steps = std::floor(run_s / c.dt_s + 1e-9);
+  if (steps > static_cast<double>(kMaxRunSteps)) {
+    msg << c.at("record.duration_s") << run_s << " s at run.dt_s = " << c.dt_s << " s is " << steps
+        << " steps, more than the limit of " << kMaxRunSteps << " steps per run";
+    throw common::ConfigError(msg.str());
+  }
+  // Disk: the time history (≥ 8 characters per value written) and the LCM log (≥ 150 bytes
+  // per step: one command and one feedback with their event headers).
+  const int stories = static_cast<int>(c.building.story_mass_kip_s2_per_in.size());
+  const int dampers = static_cast<int>(c.building.dampers.size());
+  const double columns = 2.0 + 3.0 * stories + 2.0 * dampers;
+  double bytes = (steps / c.output.every_n_steps + 1.0) * columns * 8.0;
+  if (c.transport.kind == "lcm" && c.transport.write_lcm_log) bytes += steps * 150.0;
+  const double free_bytes = static_cast<double>(common::free_disk_bytes(c.output.dir));
+  if (bytes > free_bytes) {
+    msg << c.at("record.duration_s") << run_s << " s (" << steps << " steps) writes at least "
+        << common::format_bytes(bytes) << " of results, but the disk of output.dir " << c.output.dir << " has "
+        << common::format_bytes(free_bytes) << " free (shorten the run or raise output.every_n_steps)";
+    throw common::ConfigError(msg.str());
+  }
+  return static_cast<long>(steps);
 }
 
 std::string run_config_to_yaml(const RunConfig& c) {
@@ -113,7 +173,8 @@ std::string run_config_to_yaml(const RunConfig& c) {
   o << std::boolalpha;
   o << "# Effective config of this run (every value used). Units: kip, in, s.\n"
     << "# source: " << c.source_file << "\n"
-    << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s << "\n"
+    << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s
+    << "\n  max_energy_balance_error: " << c.max_energy_balance_error << "\n"
     << "record:\n  path: " << fs::absolute(c.record.path).string() << "\n  scale: " << c.record.scale
     << "\n  duration_s: " << c.record.duration_s << "\n"
     << "building:\n";

@@ -9,15 +9,22 @@
 #include "damper/physical/physical_config.h"
 #include "structure/shear_building.h"
 
+#include <map>
 #include <string>
 
 namespace server {
+
+/// Most steps one run may take: 10^9 (11.3 days of simulated time at 1024 Hz). The step loop
+/// itself needs no memory per step (rows are streamed to disk).
+constexpr long kMaxRunSteps = 1'000'000'000;
 
 /// Which ground motion and how much of it.
 struct RecordSettings {
   std::string path;          ///< PEER AT2 or two-column (time s, accel g) file
   double scale = 1.0;        ///< multiplies the record's accelerations (g)
-  double duration_s = -1.0;  ///< simulated duration; < 0 means the whole record
+  /// Simulated duration, s: > 0 and at most the record's duration; < 0 means the whole
+  /// record; 0 is refused (a run of no step).
+  double duration_s = -1.0;
 };
 
 /// How the server talks to the substructure.
@@ -52,8 +59,13 @@ struct OutputSettings {
 
 struct RunConfig {
   std::string source_file;           ///< the YAML file this came from
-  std::string name = "run";
-  double dt_s = 1.0 / 1024.0;        ///< integration (and substructure) time step
+  std::string name = "run";          ///< letters, digits, '.', '_', '-' (part of the run id)
+  double dt_s = 1.0 / 1024.0;        ///< integration (and substructure) time step, <= the record's DT
+  /// Physics check after the run: |input − stored − dissipated| / |input| above this makes
+  /// the status "failed". The ledger's error is first order in dt (structure/energy.h): 0.7 %
+  /// for the default run, 5.6 % for a 3.2 Hz sine record; 20 % leaves room for those and
+  /// catches broken forces (a 1e300 kip feedback, a 6246 % error).
+  double max_energy_balance_error = 0.20;
   RecordSettings record;
   structure::BuildingParams building;
   DamperSettings damper;
@@ -66,10 +78,22 @@ struct RunConfig {
   /// `control:` block (control/controller.h): the semi-active law driving the electric
   /// actuators. Absent: control.enabled is false and the actuators hold x' (passive run).
   control::ControlConfig control;
+  /// "file:line" of keys checked after loading (against the record, the disk), by key path.
+  std::map<std::string, std::string> key_location;
+  /// "file:line: key: " prefix for a message about `key` (just the file if unknown).
+  std::string at(const std::string& key) const;
 };
 
 /// Loads and validates a run config; throws common::ConfigError naming file, line and key.
 RunConfig load_run_config(const std::string& path);
+
+/// The record-dependent limits, checked before a run starts (and again by the step loop):
+/// record.duration_s != 0 and not longer than the record; run.dt_s not larger than the
+/// record's DT (the loop would skip samples); steps <= kMaxRunSteps; the time history and LCM
+/// log fit on the output folder's disk. Throws common::ConfigError naming file, line and key.
+/// @return the number of steps of the run.
+long check_run_against_record(const RunConfig& config, double record_dt_s, double record_duration_s,
+                              const std::string& record_source);
 
 /// The effective config (every value used, defaults filled in) as YAML.
 std::string run_config_to_yaml(const RunConfig& config);

@@ -9,6 +9,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/run_guard.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -55,6 +57,7 @@ struct LcmSubstructure::Impl {
   bool substructure_ready = false;
   std::string last_heartbeat_fault;
   std::vector<uint8_t> encode_buffer;
+  std::string waiting_on;  ///< channel of the reply being waited for (messages)
 
   void log_event(const std::string& channel, const void* data, int size) {
     if (!log) return;
@@ -102,11 +105,18 @@ struct LcmSubstructure::Impl {
   template <class Pred>
   bool pump_until(Pred done, Clock::time_point deadline) {
     while (!done()) {
+      common::throw_if_interrupted();  // SIGINT/SIGTERM (a signal ends the wait with EINTR)
       if (Clock::now() >= deadline) return false;
+      bool dispatched = false;
       try {
-        lcm->handle_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(50)));
+        dispatched = lcm->handle_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(50)));
       } catch (const messages::TransportError& e) {
         throw SubstructureError("LCM handle() failed on URL '" + settings.url + "': " + e.what());
+      }
+      if (!dispatched && settings.peer_gone) {
+        const std::string gone = settings.peer_gone();
+        if (!gone.empty())
+          throw SubstructureError("substructure stopped answering on LCM channel '" + waiting_on + "': " + gone);
       }
     }
     return true;
@@ -147,6 +157,7 @@ void LcmSubstructure::start(const std::string& run_id, int num_dampers, double d
   start.dt_s = dt_s;
   const Clock::time_point deadline =
       Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m.settings.start_timeout_s));
+  m.waiting_on = m.settings.channels.heartbeat();
   // Messages published before the peer subscribes are lost: repeat START until it answers.
   while (!m.substructure_ready) {
     start.utime = messages::now_utime();
@@ -181,6 +192,7 @@ void LcmSubstructure::exchange(long step, double sim_time_s, const Eigen::Vector
   m.command.sim_time_s = sim_time_s;
   m.expected_step = step;
   m.have_feedback = false;
+  m.waiting_on = m.settings.channels.force_feedback();
   const auto sent = Clock::now();
   m.command.utime = messages::now_utime();
   m.publish(m.settings.channels.drift_command(), m.command);

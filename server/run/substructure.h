@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -88,6 +89,9 @@ struct LcmLinkSettings {
   double step_timeout_s = 1.0;
   double start_timeout_s = 10.0;
   std::string log_path;   ///< LCM log of all traffic of the run ("" = none)
+  /// Asked every ~50 ms while waiting for the peer: a non-empty answer (e.g. "brfd-substructure
+  /// exited with code 1") ends the wait at once with that reason instead of at the timeout.
+  std::function<std::string()> peer_gone;
 };
 
 /// A substructure in another process, over LCM: publishes drift_command_t, waits for the

@@ -45,7 +45,17 @@ SubstructureSession::SubstructureSession(const RunConfig& config, const std::str
   // Physical: the step loop is part of the real-time loop with the rig (below the
   // substructure's priority); set before LCM starts its receive thread, which inherits it.
   if (physical) damper::physical::enter_realtime(std::max(0, config.rig.realtime_priority - 10), "hybridsim");
-  auto lcm = std::make_unique<LcmSubstructure>(lcm_link_settings(config, out_dir));
+  LcmLinkSettings link = lcm_link_settings(config, out_dir);
+  // A spawned substructure that exits (or never starts) ends the link's wait at once, not at
+  // the start or step timeout. A dead rig is the substructure's to notice (sensor-frame
+  // watchdog, safety trip, ramp to safe): its report says more than an exit code.
+  const std::string log_path = (fs::path(out_dir) / "substructure.log").string();
+  link.peer_gone = [this, exe = config.damper.executable, log_path]() -> std::string {
+    if (spawned_substructure_ && !substructure_process_.running())
+      return exe + " exited with code " + std::to_string(substructure_process_.exit_code()) + " (see " + log_path + ")";
+    return {};
+  };
+  auto lcm = std::make_unique<LcmSubstructure>(link);
   lcm_ = lcm.get();
   substructure_ = std::move(lcm);
   const fs::path out(out_dir);

@@ -5,6 +5,8 @@
 /// writer thread hands each block to the file format (time_history_sink.h: CSV in the
 /// shortest round-trip text, or HDF5 columns, hdf5_time_history.h) as soon as it is handed
 /// over. hand_over() is non-blocking; finish() waits until every row is on disk.
+/// Memory does not grow with the run: a fixed pool of blocks (64 × 1024 rows) is written and
+/// reused; only a writer lagging by more than that grows it, up to a cap where the loop waits.
 
 #include "server/run/time_history_sink.h"
 
@@ -34,6 +36,8 @@ class TimeHistoryWriter {
   void finish();      ///< hands over, waits until everything is written, closes the file
   /// Error of the writer thread, "" if none (a full disk must not go unnoticed).
   std::string error() const;
+  /// Blocks of 1024 rows allocated so far (pool + growth): bounded, whatever the run's length.
+  std::size_t allocated_blocks() const;
 
  private:
   struct Block {
@@ -42,7 +46,10 @@ class TimeHistoryWriter {
   };
   void writer_loop();
   void write_block(const Block& block);
-  void take_free_block();
+  /// Next block for the step loop; with `lock` (mutex_ held) it may wait for the writer
+  /// when the pool is at its cap.
+  void take_free_block(std::unique_lock<std::mutex>* lock);
+
 
   // Touched by the step loop on every value: a cache line of its own, so the writer
   // thread's reads never bounce it between cores.
@@ -57,7 +64,7 @@ class TimeHistoryWriter {
   std::vector<Block*> queue_;        // handed over, not yet written (capacity reserved: no allocation per block)
   std::vector<Block*> written_;      // written, may be reused (capacity reserved)
   mutable std::mutex mutex_;
-  std::condition_variable wake_writer_, written_all_;
+  std::condition_variable wake_writer_, written_all_, block_written_;
   bool stopping_ = false;
   bool busy_ = false;
   std::string error_;

@@ -92,7 +92,7 @@ TEST(DiagnoseCli, BadDataIsAUserError) {
   write_text(dir + "/broken.json", "{\"dt\": 0.001, \"data\": [[0, 1, 2]]}");
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "--model", dir + "/model.yaml",
                               "--measured", dir + "/broken.json", "--out", dir + "/out"});
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad input (README "Exit codes")
   EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
 }

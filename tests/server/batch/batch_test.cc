@@ -260,9 +260,10 @@ TEST(Batch, BadRecordsFailWithTheReasonAndTheOthersComplete) {
   test_support::write_text(dir + "/recs/nan.AT2", with_nan);
   // Unknown format.
   test_support::write_text(dir + "/recs/unknown.txt", "Station: somewhere\nunits: cm/s/s\n12 apples\n");
-  // A good two-column record (t s, a g) among them.
+  // A good two-column record (t s, a g) among them, as long as the batch's duration (a
+  // shorter record is refused: issue 14).
   std::string twocol = "# t_s, accel_g\n";
-  for (int k = 0; k <= 300; ++k) twocol += std::to_string(0.01 * k) + "," + std::to_string(0.3 * std::sin(0.2 * k)) + "\n";
+  for (int k = 0; k <= std::max(300, static_cast<int>(100 * kDuration_s) + 1); ++k) twocol += std::to_string(0.01 * k) + "," + std::to_string(0.3 * std::sin(0.2 * k)) + "\n";
   test_support::write_text(dir + "/recs/sine.csv", twocol);
   fs::copy_file(records_dir() + "/" + kLabels[2] + ".AT2", dir + "/recs/" + kLabels[2] + ".AT2");
 

@@ -1,0 +1,68 @@
+#include "common/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+namespace common {
+
+namespace {
+std::string system_error_text(int err) { return std::strerror(err); }
+}  // namespace
+
+bool fsync_path(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  errno = err;
+  return rc == 0;
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  const std::filesystem::path final_path(path);
+  const std::filesystem::path folder =
+      final_path.has_parent_path() ? final_path.parent_path() : std::filesystem::path(".");
+  // Unique per process and call: two writers of one name never share a temporary file.
+  static std::atomic<int> counter{0};
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(++counter);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw FileWriteError("cannot write " + path + ": " + system_error_text(errno));
+  auto fail = [&](const char* what) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw FileWriteError("cannot write " + path + " (" + what + "): " + system_error_text(err));
+  };
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("write");
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("fsync");
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw FileWriteError("cannot write " + path + " (close): " + system_error_text(err));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw FileWriteError("cannot write " + path + " (rename): " + system_error_text(err));
+  }
+  fsync_path(folder.string());  // the rename itself durable
+}
+
+}  // namespace common

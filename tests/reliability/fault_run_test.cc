@@ -1,0 +1,262 @@
+// Fault injection on whole runs (issue 14), in-process substructure so that the outcome does
+// not depend on timing: SIGINT/SIGTERM/SIGKILL at seeded random steps, a full disk
+// (RLIMIT_FSIZE), two runs into one folder, a reused folder, physics checks, record and
+// resource limits, messages naming the input, the exit-code convention.
+// Each case asserts the outcome: exit code, message naming the input, summary status, rows
+// on disk against the steps reached.
+#include "fault_support.h"
+#include "server/run/time_history_sink.h"
+#include "server/run/time_history_writer.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <regex>
+
+namespace {
+
+using namespace fault;
+
+/// A run long enough to be interrupted anywhere: the whole record (53.7 s) at 16384 Hz,
+/// one row every 16 steps.
+std::string slow_config(const std::string& dir, const std::string& out) {
+  std::string t = config_text(out, -1.0, "in_process");
+  t = std::regex_replace(t, std::regex("dt_s: 0.0009765625"), "dt_s: 0.00006103515625");
+  t = std::regex_replace(t, std::regex("flush_every_steps: 256"), "flush_every_steps: 4096\n  every_n_steps: 16");
+  return write_config(dir, "slow.yaml", t);
+}
+
+TEST(FaultRun, SigintAndSigtermAtRandomStepsKeepEveryRow) {
+  std::mt19937 rng(143130);
+  int cases = 0;
+  for (int sig : {SIGINT, SIGTERM, SIGINT, SIGTERM}) {
+    const std::string dir = test_support::fresh_temp_dir("sig");
+    const std::string out = dir + "/out";
+    const std::string cfg = slow_config(dir, out);
+    // Full history: 879,923 steps / 16 rows of 17 values, ~ 17 MB; stop somewhere in 5-60 %.
+    const std::uintmax_t at = 1'000'000 + std::uniform_int_distribution<std::uintmax_t>(0, 9'000'000)(rng);
+    Child c = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
+    const bool reached = wait_for_size(out + "/time_history.csv", at, 60.0);
+    kill(c.pid, sig);
+    const int code = c.wait();
+    ASSERT_TRUE(reached) << c.err();
+    EXPECT_EQ(code, 128 + sig) << c.err();
+    const nlohmann::json s = read_json(out + "/summary.json");
+    EXPECT_EQ(s.value("status", ""), "interrupted");
+    EXPECT_EQ(s.value("signal", ""), sig == SIGINT ? "SIGINT" : "SIGTERM");
+    const long steps = s.value("steps", -1L);
+    EXPECT_GT(steps, 0);
+    EXPECT_LT(steps, 879923);
+    // header + the t = 0 row + one row per 16 steps reached: every row computed is on disk
+    EXPECT_EQ(count_lines(out + "/time_history.csv"), 2 + steps / 16) << "steps " << steps;
+    EXPECT_NE(c.err().find(sig == SIGINT ? "SIGINT" : "SIGTERM"), std::string::npos) << c.err();
+    std::printf("[ fault    ] %s at step %ld: exit %d, status interrupted, %ld rows on disk\n",
+                sig == SIGINT ? "SIGINT" : "SIGTERM", steps, code, count_lines(out + "/time_history.csv") - 1);
+    fs::remove_all(dir);
+    ++cases;
+  }
+  EXPECT_EQ(cases, 4);
+}
+
+TEST(FaultRun, SigkillLeavesNoLockBehindAndTheFolderRunsAgain) {
+  std::mt19937 rng(9);
+  const std::string dir = test_support::fresh_temp_dir("kill");
+  const std::string out = dir + "/out";
+  const std::string cfg = slow_config(dir, out);
+  Child c = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
+  ASSERT_TRUE(wait_for_size(out + "/time_history.csv",
+                            500'000 + std::uniform_int_distribution<std::uintmax_t>(0, 4'000'000)(rng), 60.0));
+  kill(c.pid, SIGKILL);
+  EXPECT_EQ(c.wait(), 128 + SIGKILL);
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  // The kernel dropped the lock with the process: a new run into the folder is not refused,
+  // and it replaces the killed run's partial files.
+  const std::string cfg2 = write_config(dir, "short.yaml", config_text(out, 1.0, "in_process"));
+  const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg2, "--quiet"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(out + "/summary.json").value("status", ""), "ok");
+  EXPECT_EQ(count_lines(out + "/time_history.csv"), 2 + 1024);
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, SecondRunIntoALockedFolderIsRefused) {
+  const std::string dir = test_support::fresh_temp_dir("lock");
+  const std::string out = dir + "/out";
+  const std::string cfg = slow_config(dir, out);
+  Child first = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
+  ASSERT_TRUE(wait_for_size(out + "/time_history.csv", 100'000, 60.0));
+  const std::string cfg2 = write_config(dir, "short.yaml", config_text(out, 1.0, "in_process"));
+  const auto second = test_support::run_process({hybridsim(), "run", "--config", cfg2, "--quiet"});
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  EXPECT_NE(second.err.find("in use by another run"), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find(out), std::string::npos) << second.err;
+  kill(first.pid, SIGTERM);  // the first run is untouched by the refused one: it stops cleanly
+  EXPECT_EQ(first.wait(), 143);
+  const nlohmann::json s = read_json(out + "/summary.json");
+  EXPECT_EQ(s.value("run", ""), "fault");
+  EXPECT_EQ(s.value("status", ""), "interrupted");
+  EXPECT_EQ(count_lines(out + "/time_history.csv"), 2 + s.value("steps", 0L) / 16);
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, ReusedFolderIsClearedOfTheEarlierRunsFiles) {
+  const std::string dir = test_support::fresh_temp_dir("reuse");
+  const std::string out = dir + "/out";
+  for (const char* f : {"physical.csv", "safety.json", "run.key", "tracking.json", "rig.log", "run.lcmlog"})
+    test_support::write_text(out + "/" + f, "from an earlier physical run\n");
+  test_support::write_text(out + "/notes.txt", "the user's own file\n");
+  const std::string cfg = write_config(dir, "c.yaml", config_text(out, 1.0, "in_process"));
+  const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"physical.csv", "safety.json", "run.key", "tracking.json", "rig.log", "run.lcmlog"})
+    EXPECT_FALSE(fs::exists(out + "/" + f)) << f << " of the earlier run stands beside the new summary";
+  EXPECT_TRUE(fs::exists(out + "/notes.txt")) << "only a run's own file names are cleared";
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, DiskFullFailsTheRunAndKeepsWhatWasWritten) {
+  const std::string dir = test_support::fresh_temp_dir("diskfull");
+  const std::string out = dir + "/out";
+  const std::string cfg = write_config(dir, "c.yaml", config_text(out, 20.0, "in_process"));
+  const long limit = 300'000;  // bytes per file: the time history (~3 MB) cannot fit
+  Child c = start({hybridsim(), "run", "--config", cfg}, dir, limit);
+  const int code = c.wait();
+  EXPECT_EQ(code, 1) << c.err();
+  const nlohmann::json s = read_json(out + "/summary.json");
+  EXPECT_EQ(s.value("status", ""), "failed");
+  EXPECT_NE(s.value("error", "").find("time_history.csv"), std::string::npos) << s.dump();
+  EXPECT_NE(c.err().find("time_history.csv"), std::string::npos) << c.err();
+  // What fitted is on disk, in whole rows up to the limit.
+  const auto size = fs::file_size(out + "/time_history.csv");
+  EXPECT_GT(size, limit / 2);
+  EXPECT_LE(size, static_cast<std::uintmax_t>(limit));
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, NonFiniteStateFailsTheRunWithTheReason) {
+  const std::string dir = test_support::fresh_temp_dir("nan");
+  const std::string out = dir + "/out";
+  // Masses of 1e308 kip·s²/in: M⁻¹ and the energies overflow.
+  const std::string cfg =
+      write_config(dir, "c.yaml", config_text(out, 2.0, "in_process", "", "[1e308, 1e308, 1e308]"));
+  const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  if (r.exit_code == 1) {
+    const nlohmann::json s = read_json(out + "/summary.json");
+    EXPECT_EQ(s.value("status", ""), "failed");
+    EXPECT_NE(s.value("error", "").find("physics check"), std::string::npos) << s.dump();
+  } else {
+    EXPECT_EQ(r.exit_code, 2) << r.err;  // or refused at load, naming the key
+    EXPECT_NE(r.err.find("story_mass"), std::string::npos) << r.err;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, EnergyBalanceAboveTheBoundFailsTheRun) {
+  const std::string dir = test_support::fresh_temp_dir("energy");
+  const std::string out = dir + "/out";
+  // The default run closes its balance to ~0.7 % (README); a 0.1 % bound must fail it.
+  const std::string cfg = write_config(dir, "c.yaml",
+                                       config_text(out, 30.0, "in_process", "  max_energy_balance_error: 0.001\n"));
+  const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const nlohmann::json s = read_json(out + "/summary.json");
+  EXPECT_EQ(s.value("status", ""), "failed");
+  EXPECT_NE(s.value("error", "").find("run.max_energy_balance_error"), std::string::npos) << s.dump();
+  const double err = s["energy_kip_in"].value("balance_error", 0.0);
+  EXPECT_GT(err, 0.001);
+  EXPECT_LT(err, 0.05);  // and the default bound passes it
+  fs::remove_all(dir);
+}
+
+/// Runs `hybridsim run` on `text` (written to `dir`/c.yaml); returns the result.
+test_support::ProcessResult run_text(const std::string& dir, const std::string& text) {
+  const std::string cfg = write_config(dir, "c.yaml", text);
+  return test_support::run_process({hybridsim(), "run", "--config", cfg, "--out", dir + "/out", "--quiet"});
+}
+
+TEST(FaultRun, RecordLimitsAreInputErrorsNamingFileAndKey) {
+  const std::string dir = test_support::fresh_temp_dir("record");
+  const std::string base = config_text(dir + "/out", 2.0, "in_process");
+  struct Case {
+    std::string what, from, to, expect;
+  };
+  const std::vector<Case> cases = {
+      {"duration 0 (docs: < 0 = whole record)", "duration_s: 2.000000", "duration_s: 0", "record.duration_s"},
+      {"duration longer than the record", "duration_s: 2.000000", "duration_s: 60", "longer than the record"},
+      {"duration 1e7 s (24 GB before)", "duration_s: 2.000000", "duration_s: 1e7", "record.duration_s"},
+      {"dt_s larger than the record's DT", "dt_s: 0.0009765625", "dt_s: 0.02", "run.dt_s"},
+      {"empty run name", "name: fault", "name: \"\"", "run.name"},
+      {"duplicated key", "  scale: 1.0", "  scale: 1.0\n  scale: 2.0", "duplicated key"},
+  };
+  for (const Case& c : cases) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = run_text(dir, std::regex_replace(base, std::regex(c.from), c.to));
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(r.exit_code, 2) << c.what << "\n" << r.err;
+    EXPECT_NE(r.err.find(dir + "/c.yaml:"), std::string::npos) << c.what << ": names file and line\n" << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.what << "\n" << r.err;
+    EXPECT_LT(s, 5.0) << c.what;
+  }
+  // Records whose header is out of bounds: refused naming the record and its line 4.
+  const std::string rec = test_support::read_text(record_path());
+  for (const std::string header : {"NPTS= 100000000000000000000, DT= .0100 SEC", "NPTS=   5372, DT= 1e-300 SEC",
+                                   "NPTS=   5372, DT= 1e6 SEC"}) {
+    const std::string path = dir + "/bad.AT2";
+    test_support::write_text(path, std::regex_replace(rec, std::regex("NPTS=   5372, DT=   .0100 SEC"), header));
+    const auto r = run_text(dir, std::regex_replace(base, std::regex("path: [^\\n]*AT2"), "path: " + path));
+    EXPECT_EQ(r.exit_code, 2) << header << "\n" << r.err;
+    EXPECT_NE(r.err.find(path + ":4:"), std::string::npos) << header << "\n" << r.err;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, MessagesNameTheInput) {
+  const std::string dir = test_support::fresh_temp_dir("names");
+  // A folder as --config.
+  auto r = test_support::run_process({hybridsim(), "run", "--config", dir});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(dir + ": is a folder"), std::string::npos) << r.err;
+  // A folder as a BRFD test.
+  r = test_support::run_process({hybridsim(), "damper", "predict", "--config",
+                                 test_paths::source_dir() + "/configs/brfd-semiactive.yaml", "--test", dir});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  fs::remove_all(dir);
+}
+
+TEST(FaultRun, OneExitCodeConventionForEverySubcommand) {
+  // Command-line errors are bad input (2), not CLI11's 105/106/109.
+  for (const std::vector<std::string>& argv :
+       {std::vector<std::string>{hybridsim(), "run"}, {hybridsim(), "nonsense"},
+        {hybridsim(), "run", "--config", "x.yaml", "--bogus"}, {hybridsim(), "damper", "predict"},
+        {hybridsim(), "batch", "--jobs", "abc"}, {bin_dir() + "/brfd-substructure"},
+        {bin_dir() + "/brfd-substructure", "--url", "udpm://239.255.76.67:7667?ttl=0", "--run-id", ""},
+        {bin_dir() + "/brfd-rig"}}) {
+    const auto r = test_support::run_process(argv);
+    std::string cmd;
+    for (std::size_t i = 1; i < argv.size(); ++i) cmd += argv[i] + " ";
+    EXPECT_EQ(r.exit_code, 2) << cmd << "\n" << r.err;
+  }
+  EXPECT_EQ(test_support::run_process({hybridsim(), "--help"}).exit_code, 0);
+}
+
+TEST(FaultRun, TimeHistoryIsStreamedNotPreallocated) {
+  // 10^12 expected rows (a 30-year run): the writer must not try to hold them.
+  const std::string dir = test_support::fresh_temp_dir("stream");
+  server::TimeHistoryWriter w(server::make_csv_time_history(dir + "/t.csv", {"a", "b", "c"}), 3,
+                              1'000'000'000'000L);
+  EXPECT_LE(w.allocated_blocks(), 64u);
+  for (int i = 0; i < 300'000; ++i) {  // 293 blocks through a pool of 64
+    w.add(i);
+    w.add(2.0 * i);
+    w.add(-i);
+    w.end_row();
+  }
+  w.finish();
+  EXPECT_TRUE(w.error().empty());
+  EXPECT_LE(w.allocated_blocks(), 1024u);
+  EXPECT_EQ(count_lines(dir + "/t.csv"), 300'001);
+  fs::remove_all(dir);
+}
+
+}  // namespace
