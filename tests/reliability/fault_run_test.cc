@@ -155,17 +155,21 @@ TEST(FaultRun, NonFiniteStateFailsTheRunWithTheReason) {
 TEST(FaultRun, EnergyBalanceAboveTheBoundFailsTheRun) {
   const std::string dir = test_support::fresh_temp_dir("energy");
   const std::string out = dir + "/out";
-  // The default run closes its balance to ~0.7 % (README); a 0.1 % bound must fail it.
+  // The run's ledger closes to round-off (~1e-15 over 30 s); a bound below round-off must
+  // fail the run with the reason, the default bound (1e-6) must pass the same run.
   const std::string cfg = write_config(dir, "c.yaml",
-                                       config_text(out, 30.0, "in_process", "  max_energy_balance_error: 0.001\n"));
+                                       config_text(out, 30.0, "in_process", "  max_energy_balance_error: 1e-17\n"));
   const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
-  EXPECT_EQ(r.exit_code, 1) << r.err;
   const nlohmann::json s = read_json(out + "/summary.json");
+  const double err = s["energy_kip_in"].value("balance_error", 0.0);
+  ASSERT_GT(err, 1e-17) << "round-off vanished exactly; the bound cannot be exceeded";
+  EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(s.value("status", ""), "failed");
   EXPECT_NE(s.value("error", "").find("run.max_energy_balance_error"), std::string::npos) << s.dump();
-  const double err = s["energy_kip_in"].value("balance_error", 0.0);
-  EXPECT_GT(err, 0.001);
-  EXPECT_LT(err, 0.05);  // and the default bound passes it
+  EXPECT_LT(err, 1e-6);
+  const std::string cfg2 = write_config(dir, "d.yaml", config_text(out, 30.0, "in_process"));
+  const auto r2 = test_support::run_process({hybridsim(), "run", "--config", cfg2, "--quiet"});
+  EXPECT_EQ(r2.exit_code, 0) << r2.err;
   fs::remove_all(dir);
 }
 
