@@ -1,5 +1,7 @@
 #include "server/batch/batch_files.h"
 
+#include "common/atomic_file.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -20,30 +22,10 @@ std::string read_file(const fs::path& p) {
   return s.str();
 }
 
-void write_file_atomic(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write " + tmp.string());
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error("cannot write " + tmp.string() + " (disk full?)");
-  }
-  const int fd = ::open(tmp.c_str(), O_RDONLY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-  fs::rename(tmp, path);
-}
+// One helper for every durable write of the project (common/atomic_file.h).
+void write_file_atomic(const fs::path& path, const std::string& text) { common::write_file_atomic(path.string(), text); }
 
-void fsync_path(const fs::path& p) {
-  const int fd = ::open(p.c_str(), O_RDONLY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-}
+void fsync_path(const fs::path& p) { common::fsync_path(p.string()); }
 
 std::string utc_now() {
   const std::time_t t = std::time(nullptr);

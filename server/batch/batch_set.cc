@@ -60,7 +60,7 @@ RunResult read_result(const std::string& out, const std::string& label) {
       r.summary = json::parse(read_file(s));
       r.state = r.summary.value("status", "failed") == "ok" ? "ok" : "failed";
     } catch (const std::exception& e) {
-      r.summary = json{{"status", "failed"}, {"error", "unreadable summary.json: " + std::string(e.what())}};
+      r.summary = json{{"status", "failed"}, {"error", s.string() + ": unreadable: " + std::string(e.what())}};
       r.state = "failed";
     }
     r.finished = dir == final_dir(out, label);
@@ -90,11 +90,35 @@ BatchSet prepare_set(const BatchOptions& o) {
   return b;
 }
 
+bool readable_summary(const fs::path& summary_path, std::string* why) {
+  std::error_code ec;
+  if (!fs::exists(summary_path, ec)) {
+    if (why) *why = "missing";
+    return false;
+  }
+  try {
+    const json j = json::parse(read_file(summary_path));
+    if (j.is_object() && j.contains("status") && j["status"].is_string()) return true;
+    if (why) *why = "no status";
+  } catch (const std::exception& e) {
+    if (why) *why = fs::file_size(summary_path, ec) == 0 ? std::string("0 bytes") : std::string(e.what());
+  }
+  return false;
+}
+
 void check_finished_matches(const std::string& out, const BatchRecord& r, double duration_s) {
   const fs::path info = final_dir(out, r.label) / "batch-run.json";
   std::error_code ec;
   if (!fs::exists(info, ec)) return;
-  const json j = json::parse(read_file(info));
+  // A run whose summary cannot be read is not finished: it is set aside and redone.
+  if (!readable_summary(final_dir(out, r.label) / "summary.json", nullptr)) return;
+  json j;
+  try {
+    j = json::parse(read_file(info));
+  } catch (const std::exception& e) {
+    throw BatchInputError(info.string() + ": unreadable (" + std::string(e.what()) +
+                          "): move runs/" + r.label + " away to run that record again");
+  }
   const std::string path = j.value("path", "");
   const double scale = j.value("scale", 0.0);
   if (path != r.path || scale != r.scale)

@@ -46,6 +46,10 @@ RunResult read_result(const std::string& out, const std::string& label);
 /// common::ConfigError).
 BatchSet prepare_set(const BatchOptions& o);
 
+/// True if `summary_path` holds a JSON object with a "status": a finished run. A 0-byte or
+/// half-written summary (a disk that filled before atomic writes) is not; `why` says why.
+bool readable_summary(const std::filesystem::path& summary_path, std::string* why);
+
 /// Stops with an error if runs/<label>/ holds a different record or scale than the set says
 /// (e.g. the list file changed a scale but kept the label): resuming would mix results.
 void check_finished_matches(const std::string& out, const BatchRecord& r, double duration_s);

@@ -133,8 +133,16 @@ DriverResult run_records(const BatchOptions& o, const BatchSet& b, const std::ve
   for (std::size_t i : mine) {
     const BatchRecord& r = b.records[i];
     std::error_code ec;
-    const bool finished = fs::exists(final_dir(o.out, r.label) / "summary.json", ec);
-    if (finished) {
+    const fs::path summary_path = final_dir(o.out, r.label) / "summary.json";
+    std::string why;
+    const bool finished = readable_summary(summary_path, &why);
+    if (!finished && fs::exists(summary_path, ec)) {
+      // Written by a batch on a full disk before summaries were atomic: not a result.
+      const fs::path aside = runs_dir(o.out) / (r.label + ".unreadable-" + std::to_string(messages::now_utime()));
+      std::cerr << progress_prefix << "batch: " << summary_path.string() << " is unreadable (" << why
+                << "): kept aside as " << aside.string() << ", the record runs again\n";
+      fs::rename(final_dir(o.out, r.label), aside);
+    } else if (finished) {
       if (o.retry_failed && read_result(o.out, r.label).state == "failed") {
         set_failed_aside(o.out, r.label);
       } else {

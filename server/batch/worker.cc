@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -30,6 +31,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 using batch_internal::fsync_path;
+using batch_internal::write_file_atomic;
 using batch_internal::unblock_stop_signals;
 using batch_internal::utc_now;
 
@@ -120,7 +122,9 @@ int batch_worker_command(const BatchWorkerOptions& w) {
   info["wall_s"] = std::chrono::duration<double>(Clock::now() - t0).count();
   info["finished_utc"] = utc_now();
   try {
-    std::ofstream(partial / "batch-run.json") << std::setw(2) << info << "\n";
+    std::ostringstream info_text;
+    info_text << std::setw(2) << info << "\n";
+    write_file_atomic(partial / "batch-run.json", info_text.str());  // a full disk throws, never 0 bytes
     write_summary_json(summary, config, (partial / "summary.json").string());
   } catch (const std::exception& e) {
     std::cerr << "hybridsim batch worker: cannot write results: " << e.what() << "\n";

@@ -264,3 +264,69 @@ TEST(FaultRun, TimeHistoryIsStreamedNotPreallocated) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace fault;
+
+/// A batch of the shipped El Centro record at three scales, 2 s each, in-process.
+std::string batch_setup(const std::string& dir) {
+  test_support::write_text(dir + "/records.txt", record_path() + " 1.0 a\n" + record_path() + " 0.5 b\n" +
+                                                      record_path() + " 0.25 c\n");
+  return write_config(dir, "c.yaml", config_text(dir + "/unused", 2.0, "lcm"));
+}
+
+test_support::ProcessResult batch(const std::string& dir, const std::string& cfg, std::vector<std::string> extra = {}) {
+  std::vector<std::string> argv{hybridsim(), "batch", "--config", cfg, "--records", dir + "/records.txt",
+                                "--out", dir + "/out", "--jobs", "1", "--transport", "in_process", "--quiet"};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  return test_support::run_process(argv);
+}
+
+TEST(FaultBatch, DiskFullFailsRunsWithoutFakeResultsAndResumeRedoesThem) {
+  const std::string dir = test_support::fresh_temp_dir("batch-full");
+  const std::string cfg = batch_setup(dir);
+  // 2 s per run: ~300 kB of time history each; a 100 kB file limit fills the "disk" in every run.
+  Child c = start({hybridsim(), "batch", "--config", cfg, "--records", dir + "/records.txt", "--out", dir + "/out",
+                   "--jobs", "1", "--transport", "in_process", "--quiet"},
+                  dir, 100'000);
+  const int code = c.wait();
+  EXPECT_EQ(code, 1) << c.out() << c.err();
+  // No run is counted ok on a full disk; every summary on disk is complete JSON.
+  int summaries = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir + "/out/runs")) {
+    if (e.path().filename() != "summary.json") continue;
+    ++summaries;
+    const nlohmann::json s = read_json(e.path().string());
+    EXPECT_NE(s.value("status", ""), "ok") << e.path();
+  }
+  EXPECT_GT(summaries, 0);
+  // Resume on a disk with room: --retry-failed redoes them, all ok.
+  const auto r = batch(dir, cfg, {"--retry-failed"});
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("records=3 ok=3 failed=0"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+TEST(FaultBatch, ResumeNamesAndRedoesAnUnreadableSummary) {
+  const std::string dir = test_support::fresh_temp_dir("batch-zero");
+  const std::string cfg = batch_setup(dir);
+  auto r = batch(dir, cfg);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  // What a full disk left before summaries were atomic: a 0-byte summary and batch-run.json.
+  test_support::write_text(dir + "/out/runs/b/summary.json", "");
+  test_support::write_text(dir + "/out/runs/b/batch-run.json", "");
+  r = batch(dir, cfg);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find(dir + "/out/runs/b/summary.json is unreadable (0 bytes)"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("records=3 ok=3 failed=0"), std::string::npos) << r.out;
+  EXPECT_EQ(read_json(dir + "/out/runs/b/summary.json").value("status", ""), "ok");
+  // --retry-failed over a half-written summary: same, never an exit 2 without the file's name.
+  test_support::write_text(dir + "/out/runs/c/summary.json", "{\"status\": \"ok\", \"pe");
+  r = batch(dir, cfg, {"--retry-failed"});
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find(dir + "/out/runs/c/summary.json is unreadable"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
