@@ -1,4 +1,5 @@
 #include "server/cli/diagnose_commands.h"
+#include "server/cli/guarded.h"
 
 #include "common/run_guard.h"
 #include "common/strict_yaml.h"
@@ -100,27 +101,13 @@ void add_diagnose_commands(CLI::App& app) {
       std::cerr << "error: diagnose needs --model, --measured and --out (or the subcommand bench)" << std::endl;
       throw CLI::RuntimeError(2);
     }
-    try {
+    guarded([&] {
       damper::DiagnoseOptions opt = a->o;
       opt.base = a->base == "model" ? damper::BaseSource::model : damper::BaseSource::identify;
       opt.figures = !a->no_figures;
       opt.log = [](const std::string& s) { std::cout << s << "\n"; };
       const damper::DiagnoseResult r = damper::run_diagnose(opt);
       std::cout << damper::diagnose_confidence_line(r) << "\n" << damper::diagnose_final_line(r) << std::endl;
-    } catch (const CLI::Error&) {
-      throw;
-    } catch (const damper::BrfdDataError& e) {  // bad input: exit 2 (README "Exit codes")
-      std::cerr << "error: " << e.what() << std::endl;
-      throw CLI::RuntimeError(common::kExitBadInput);
-    } catch (const common::ConfigError& e) {
-      std::cerr << "error: " << e.what() << std::endl;
-      throw CLI::RuntimeError(common::kExitBadInput);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "error: " << e.what() << std::endl;
-      throw CLI::RuntimeError(common::kExitBadInput);
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << std::endl;
-      throw CLI::RuntimeError(common::kExitRunFailed);
-    }
+    });
   });
 }
