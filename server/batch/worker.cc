@@ -72,11 +72,20 @@ int batch_worker_command(const BatchWorkerOptions& w) {
             {"started_utc", utc_now()},  {"worker_pid", getpid()}};
 
   if (!infra_failure) {
-    std::ofstream(partial / "effective-config.yaml") << run_config_to_yaml(config);
-    // The record: a bad one fails this run, with the reason.
+    // The record: a bad one (or record.resample: exact against a step that does not divide
+    // the record's) fails this run, with the reason.
     bool record_ok = true;
+    std::string record_error;
     try {
-      structure::read_ground_motion(config.record.path, config.record.scale);
+      const double record_dt_s = structure::read_ground_motion(config.record.path, config.record.scale).dt_s;
+      config.resampling_note = describe_resampling(record_dt_s, config.dt_s, config.record.resample).text;
+      check_resampling(config, record_dt_s);
+    } catch (const std::exception& e) {
+      record_error = e.what();
+    }
+    std::ofstream(partial / "effective-config.yaml") << run_config_to_yaml(config);
+    try {
+      if (!record_error.empty()) throw std::runtime_error(record_error);
     } catch (const std::exception& e) {
       summary.status = "failed";
       summary.error = e.what();

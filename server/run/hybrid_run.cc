@@ -9,7 +9,7 @@
 #include "server/run/time_history_writer.h"
 #include "server/run/substructure_session.h"
 #include "common/process.h"
-#include "structure/cr_integrator.h"
+#include "structure/integrator.h"
 #include "structure/energy.h"
 #include "structure/ground_motion.h"
 #include "structure/shear_building.h"
@@ -128,6 +128,8 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
 
   RunSummary s;
   s.pga_g = record.pga_g();
+  s.record_dt_s = record.dt_s;
+  s.resampling = describe_resampling(record.dt_s, dt, config.record.resample);
   s.modal_periods_s = building.modal().period_s;
   s.peak_drift_in = Eigen::VectorXd::Zero(n);
   s.residual_drift_in = Eigen::VectorXd::Zero(n);
@@ -142,16 +144,15 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   TimeHistoryWriter history(make_time_history_sink(config, columns, expected_rows, record.source), columns.size(),
                         expected_rows);
 
-  structure::CrIntegrator cr(building, dt);
+  const std::unique_ptr<structure::Integrator> integrator = structure::make_integrator(building, dt, config.integrator);
+  structure::Integrator& cr = *integrator;  // CR or KR-α: same substructure contract
+  s.integrator = integrator->description();
   structure::EnergyLedger energy(building);
   SubstructureReply reply{Eigen::VectorXd::Zero(nd), Eigen::VectorXd::Zero(nd), Eigen::MatrixX2d::Zero(nd, 2)};
   Eigen::VectorXd force = Eigen::VectorXd::Zero(nd);       // damper forces at the current step
   Eigen::VectorXd drum = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd drum_vel = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd drift(n);
-  // Per-damper dissipation ∫F_k·d(drum_k), trapezoidal like the ledger's total.
-  Eigen::VectorXd energy_per_damper = Eigen::VectorXd::Zero(nd);
-  Eigen::VectorXd damper_power = Eigen::VectorXd::Zero(nd), damper_power_prev = Eigen::VectorXd::Zero(nd);
   Eigen::VectorXd abs_accel_g(n);
   // Semi-active control: the controller sees floor absolute accelerations (in/s²) and forces of
   // the last completed step, the drifts and drum displacements of the step being computed.
@@ -261,9 +262,6 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
         throw std::runtime_error(msg.str());
       }
       energy.add_step(dt, cr.displacement_in(), cr.velocity_in_per_s(), ag, force);
-      damper_power = force.cwiseProduct(drum_vel);  // committed velocity is v₊: drum_vel still holds Γᵀv₊
-      energy_per_damper += 0.5 * dt * (damper_power + damper_power_prev);
-      damper_power_prev = damper_power;
 
       const Eigen::VectorXd& x = cr.displacement_in();
       drift[0] = x[0];
@@ -305,7 +303,9 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.residual_drift_in = building.interstory_drift(cr.displacement_in());
-  s.damper_energy_kip_in = energy_per_damper;
+  s.damper_energy_kip_in = energy.damper_kip_in_per_damper();
+  s.algorithmic_energy_kip_in = energy.algorithmic_kip_in();
+  s.energy_definition = structure::energy_definition_text(energy.definition());
   s.input_energy_kip_in = energy.input_kip_in();
   s.kinetic_energy_kip_in = energy.kinetic_kip_in();
   s.strain_energy_kip_in = energy.strain_kip_in();
@@ -315,10 +315,11 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     s.control_law = control::to_string(config.control.law);
     s.controller_us_per_step = s.steps > 0 ? 1e6 * controller_s / static_cast<double>(s.steps) : 0.0;
   }
-  // The same building without dampers under the same record and steps (CR, F = 0): the
-  // reference of the benchmark criteria J (Ohtori et al. 2004).
+  // The same building without dampers under the same record and steps (same integrator,
+  // F = 0): the reference of the benchmark criteria J (Ohtori et al. 2004).
   if (s.steps > 0) {
-    structure::CrIntegrator bare(building, dt);
+    const std::unique_ptr<structure::Integrator> bare_integrator = structure::make_integrator(building, dt, config.integrator);
+    structure::Integrator& bare = *bare_integrator;
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
     control::ResponseStats ref(n, building.mass().diagonal());
     Eigen::VectorXd d(n), a(n);
@@ -391,7 +392,17 @@ void write_summary_json(const RunSummary& s, const RunConfig& config, const std:
                         {"strain", s.strain_energy_kip_in},
                         {"inherent_damping", s.inherent_damping_energy_kip_in},
                         {"damper", s.damper_energy_kip_in.sum()},
-                        {"balance_error", s.energy_balance_error}};
+                        {"algorithmic", s.algorithmic_energy_kip_in},
+                        {"balance_error", s.energy_balance_error},
+                        {"definition", s.energy_definition}};
+  j["integrator"] = {{"kind", config.integrator.kind}, {"description", s.integrator}};
+  if (config.integrator.kind == "kr_alpha") j["integrator"]["rho_inf"] = config.integrator.rho_inf;
+  j["record_dt_s"] = s.record_dt_s;
+  j["resampling"] = {{"mode", config.record.resample},
+                     {"record_dt_s", s.resampling.record_dt_s},
+                     {"run_dt_s", s.resampling.run_dt_s},
+                     {"steps_per_record_sample", s.resampling.steps_per_sample},
+                     {"interpolation", s.resampling.text}};
   // Benchmark criteria relative to the building without dampers (Ohtori et al. 2004).
   const control::Criteria& c = s.criteria;
   j["criteria"] = {{"J1_peak_drift_ratio", c.j1},
@@ -422,6 +433,8 @@ std::string format_summary(const RunSummary& s) {
   o << std::setprecision(4);
   o << "status: " << s.status << (s.error.empty() ? "" : " (" + s.error + ")") << "\n";
   o << "steps: " << s.steps << "  simulated: " << s.sim_time_s << " s  wall: " << s.wall_s << " s\n";
+  if (!s.integrator.empty()) o << "integrator: " << s.integrator << "\n";
+  if (!s.resampling.text.empty()) o << "record: " << s.resampling.text << "\n";
   o << "PGA: " << s.pga_g << " g   modal periods (s):";
   for (int i = 0; i < s.modal_periods_s.size(); ++i) o << " " << s.modal_periods_s[i];
   o << "\n";
@@ -433,8 +446,11 @@ std::string format_summary(const RunSummary& s) {
       << s.damper_energy_kip_in[k] << " kip-in\n";
   o << "energy (kip-in): input " << s.input_energy_kip_in << " = kinetic " << s.kinetic_energy_kip_in
     << " + strain " << s.strain_energy_kip_in << " + inherent damping "
-    << s.inherent_damping_energy_kip_in << " + damper " << s.damper_energy_kip_in.sum()
-    << "  (balance error " << 100.0 * s.energy_balance_error << " %)\n";
+    << s.inherent_damping_energy_kip_in << " + damper " << s.damper_energy_kip_in.sum();
+  if (std::abs(s.algorithmic_energy_kip_in) > 1e-9 * std::abs(s.input_energy_kip_in))
+    o << " + algorithmic " << s.algorithmic_energy_kip_in;
+  o << "  (balance error " << std::setprecision(2) << s.energy_balance_error << std::setprecision(4) << ")\n";
+  if (!s.energy_definition.empty()) o << "  [" << s.energy_definition << "]\n";
   const control::Criteria& c = s.criteria;
   o << "criteria vs. no damper: J1 drift " << c.j1 << "  J2 accel " << c.j2 << "  J3 base shear " << c.j3
     << "  (RMS: " << c.j1_rms << " " << c.j2_rms << " " << c.j3_rms << ")\n";
@@ -482,6 +498,8 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     // Fail early on a bad record, and on a run that does not fit the record or the disk.
     const structure::GroundMotion record = structure::read_ground_motion(config.record.path, config.record.scale);
     check_run_against_record(config, record.dt_s, record.duration_s(), record.source);
+    check_resampling(config, record.dt_s);
+    config.resampling_note = describe_resampling(record.dt_s, config.dt_s, config.record.resample).text;
     structure::ShearBuilding check(config.building);
   } catch (const std::exception& e) {
     std::cerr << "hybridsim run: " << e.what() << "\n";

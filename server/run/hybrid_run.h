@@ -46,6 +46,7 @@ struct RunSummary {
   double kinetic_energy_kip_in = 0.0;
   double strain_energy_kip_in = 0.0;
   double inherent_damping_energy_kip_in = 0.0;
+  double algorithmic_energy_kip_in = 0.0;  ///< removed by the integrator (KR-α ρ∞ < 1), structure/energy.h
   double energy_balance_error = 0.0;  ///< |input − stored − dissipated| / |input|
   /// Benchmark criteria against the same building without dampers (control/criteria.h).
   control::Criteria criteria;
@@ -57,6 +58,10 @@ struct RunSummary {
   Eigen::VectorXd actuator_peak_speed_in_per_s;///< per damper, max |Δx_k|/dt over both actuators
   Eigen::VectorXd actuator_min_in, actuator_max_in;  ///< per damper, extreme positions reached
   double controller_us_per_step = 0.0;        ///< mean wall time of Controller::compute
+  std::string energy_definition;      ///< which ledger (structure::energy_definition_text)
+  std::string integrator;             ///< e.g. "KR-alpha (Kolay & Ricles 2014), rho_inf = 0.5"
+  double record_dt_s = 0.0;           ///< the record's own sample step
+  ResampleDescription resampling;     ///< record step, run step, interpolation
 };
 
 /// Runs the step loop against `substructure` and writes results to config.output.dir.

@@ -28,7 +28,7 @@ RunConfig load_run_config(const std::string& path) {
   c.source_file = path;
 
   const common::YamlSection run = top.section("run");
-  run.allow_only({"name", "dt_s", "max_energy_balance_error"});
+  run.allow_only({"name", "dt_s", "max_energy_balance_error", "integrator", "rho_inf"});
   c.name = run.get_string("name", c.name);
   if (c.name.empty()) run.fail("name", "must not be empty (it names the run id and its LCM messages)");
   if (c.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") !=
@@ -37,49 +37,66 @@ RunConfig load_run_config(const std::string& path) {
   c.dt_s = run.get_double_in("dt_s", c.dt_s, 1e-6, 0.1);
   c.max_energy_balance_error = run.get_double_in("max_energy_balance_error", c.max_energy_balance_error, 0.0, 10.0);
   c.key_location["run.dt_s"] = run.location("dt_s");
+  c.integrator.kind = run.get_choice("integrator", c.integrator.kind, {"cr", "kr_alpha"});
+  if (run.has("rho_inf") && c.integrator.kind != "kr_alpha")
+    run.fail("rho_inf", "applies to run.integrator kr_alpha only (CR has no numerical dissipation)");
+  c.integrator.rho_inf = run.get_double_in("rho_inf", c.integrator.rho_inf, 0.0, 1.0);
 
   const common::YamlSection rec = top.section("record");
-  rec.allow_only({"path", "scale", "duration_s"});
+  rec.allow_only({"path", "scale", "duration_s", "resample"});
   c.record.path = resolve(path, rec.get_string("path"));
   c.record.scale = rec.get_double_in("scale", 1.0, 1e-6, 100.0);
   c.record.duration_s = rec.get_double("duration_s", -1.0);
   if (c.record.duration_s == 0.0)
     rec.fail("duration_s", "0 s would run no step: give the seconds to simulate (> 0), or < 0 for the whole record");
   c.key_location["record.duration_s"] = rec.location("duration_s");
+  c.record.resample = rec.get_choice("resample", c.record.resample, {"linear", "exact"});
+  c.key_location["record.resample"] = rec.location("resample");
 
   c.building = structure::building_params_from_yaml(top.section("building"));
 
-  const common::YamlSection d = top.section("damper");
-  d.allow_only({"mode", "model_config", "model", "launch", "executable"});
-  c.damper.mode = d.get_choice("mode", {"virtual", "physical"});
-  if (d.has("model") == d.has("model_config"))
-    d.fail("model_config", "give exactly one of damper.model_config (a file) or damper.model (inline)");
-  c.damper.launch = d.get_choice("launch", c.damper.launch, {"spawn", "external"});
-  c.damper.executable = d.get_string("executable", c.damper.executable);
-  if (d.has("model")) {
-    c.damper_model = damper::brfd_params_from_yaml(d.section("model"));
-  } else {
-    c.damper.model_config = resolve(path, d.get_string("model_config"));
-    try {
-      c.damper_model = damper::load_brfd_params(c.damper.model_config);
-    } catch (const common::ConfigError& e) {
-      throw common::ConfigError(std::string(e.what()) + " (from " + path + ": damper.model_config)");
+  // No dampers: the damper block (and its model) may be left out.
+  c.has_damper_block = top.has("damper") || !c.building.dampers.empty();
+  if (c.has_damper_block) {
+    const common::YamlSection d = top.section("damper");
+    d.allow_only({"mode", "model_config", "model", "launch", "executable"});
+    c.damper.mode = d.get_choice("mode", {"virtual", "physical"});
+    if (d.has("model") == d.has("model_config"))
+      d.fail("model_config", "give exactly one of damper.model_config (a file) or damper.model (inline)");
+    c.damper.launch = d.get_choice("launch", c.damper.launch, {"spawn", "external"});
+    c.damper.executable = d.get_string("executable", c.damper.executable);
+    if (d.has("model")) {
+      c.damper_model = damper::brfd_params_from_yaml(d.section("model"));
+    } else {
+      c.damper.model_config = resolve(path, d.get_string("model_config"));
+      try {
+        c.damper_model = damper::load_brfd_params(c.damper.model_config);
+      } catch (const common::ConfigError& e) {
+        throw common::ConfigError(std::string(e.what()) + " (from " + path + ": damper.model_config)");
+      }
     }
   }
 
-  const common::YamlSection t = top.section("transport");
-  t.allow_only({"kind", "url", "private_netns", "lab_network", "channel_prefix", "step_timeout_s",
-                "start_timeout_s", "write_lcm_log"});
+  // Without dampers nothing is exchanged: the transport block may be left out too (in-process).
   TransportSettings& tr = c.transport;
-  tr.kind = t.get_choice("kind", {"lcm", "in_process"});
-  tr.url = t.get_string("url", "");
-  if (tr.kind == "lcm" && tr.url.empty()) t.fail("url", "required when transport.kind is lcm");
-  tr.private_netns = t.get_bool("private_netns", tr.private_netns);
-  tr.lab_network = t.get_bool("lab_network", tr.lab_network);
-  tr.channel_prefix = t.get_string("channel_prefix", tr.channel_prefix);
-  tr.step_timeout_s = t.get_double_in("step_timeout_s", tr.step_timeout_s, 1e-3, 60.0);
-  tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
-  tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
+  if (!c.has_damper_block && !top.has("transport")) {
+    tr.kind = "in_process";
+  } else {
+    const common::YamlSection t = top.section("transport");
+    t.allow_only({"kind", "url", "private_netns", "lab_network", "channel_prefix", "step_timeout_s",
+                  "start_timeout_s", "write_lcm_log"});
+    tr.kind = t.get_choice("kind", {"lcm", "in_process"});
+    tr.url = t.get_string("url", "");
+    if (tr.kind == "lcm" && tr.url.empty()) t.fail("url", "required when transport.kind is lcm");
+    tr.private_netns = t.get_bool("private_netns", tr.private_netns);
+    tr.lab_network = t.get_bool("lab_network", tr.lab_network);
+    tr.channel_prefix = t.get_string("channel_prefix", tr.channel_prefix);
+    tr.step_timeout_s = t.get_double_in("step_timeout_s", tr.step_timeout_s, 1e-3, 60.0);
+    tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
+    tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
+    if (c.damper.mode == "physical" && tr.kind != "lcm")
+      t.fail("kind", "damper.mode physical needs transport.kind lcm (the rig is another process)");
+  }
 
   if (top.has("control")) {
     c.control = control::control_config_from_yaml(top.section("control"));
@@ -96,7 +113,6 @@ RunConfig load_run_config(const std::string& path) {
   c.rig.rig.config = resolve(path, c.rig.rig.config);
   if (top.has("rig")) c.rig = damper::physical::physical_settings_from_yaml(top.section("rig"));
   if (c.damper.mode == "physical") {
-    if (tr.kind != "lcm") t.fail("kind", "damper.mode physical needs transport.kind lcm (the rig is another process)");
     if (std::abs(c.dt_s * c.rig.controller_rate_hz - 1.0) > 1e-9)
       run.fail("dt_s", "damper.mode physical sends one actuator command per step: dt_s must be 1 / "
                        "rig.controller_rate_hz (" + std::to_string(1.0 / c.rig.controller_rate_hz) + " s)");
@@ -174,19 +190,26 @@ std::string run_config_to_yaml(const RunConfig& c) {
   o << "# Effective config of this run (every value used). Units: kip, in, s.\n"
     << "# source: " << c.source_file << "\n"
     << "run:\n  name: " << c.name << "\n  dt_s: " << c.dt_s
-    << "\n  max_energy_balance_error: " << c.max_energy_balance_error << "\n"
-    << "record:\n  path: " << fs::absolute(c.record.path).string() << "\n  scale: " << c.record.scale
-    << "\n  duration_s: " << c.record.duration_s << "\n"
-    << "building:\n";
+    << "\n  max_energy_balance_error: " << c.max_energy_balance_error
+    << "\n  integrator: " << c.integrator.kind << "\n";
+  if (c.integrator.kind == "kr_alpha") o << "  rho_inf: " << c.integrator.rho_inf << "\n";
+  o << "record:\n  path: " << fs::absolute(c.record.path).string() << "\n  scale: " << c.record.scale
+    << "\n  duration_s: " << c.record.duration_s << "\n  resample: " << c.record.resample << "\n";
+  if (!c.resampling_note.empty()) o << "  # " << c.resampling_note << "\n";
+  o << "building:\n";
   std::istringstream b(structure::building_params_to_yaml(c.building));
   for (std::string line; std::getline(b, line);) o << "  " << line << "\n";
-  o << "damper:\n  mode: " << c.damper.mode << "\n  launch: " << c.damper.launch
-    << "\n  executable: " << c.damper.executable << "\n";
-  if (!c.damper.model_config.empty())
-    o << "  # model read from " << fs::absolute(c.damper.model_config).string() << "\n";
-  o << "  model:\n";
-  std::istringstream m(damper::brfd_params_to_yaml(c.damper_model));
-  for (std::string line; std::getline(m, line);) o << "    " << line << "\n";
+  if (c.has_damper_block) {
+    o << "damper:\n  mode: " << c.damper.mode << "\n  launch: " << c.damper.launch
+      << "\n  executable: " << c.damper.executable << "\n";
+    if (!c.damper.model_config.empty())
+      o << "  # model read from " << fs::absolute(c.damper.model_config).string() << "\n";
+    o << "  model:\n";
+    std::istringstream m(damper::brfd_params_to_yaml(c.damper_model));
+    for (std::string line; std::getline(m, line);) o << "    " << line << "\n";
+  } else {
+    o << "# no dampers: no damper block, no substructure model\n";
+  }
   const TransportSettings& t = c.transport;
   o << "transport:\n  kind: " << t.kind << "\n  url: \"" << t.url << "\"\n  private_netns: "
     << t.private_netns << "\n  lab_network: " << t.lab_network << "\n  channel_prefix: "
@@ -204,6 +227,45 @@ std::string run_config_to_yaml(const RunConfig& c) {
   }
   o << control::control_config_to_yaml(c.control);
   return o.str();
+}
+
+}  // namespace server
+
+namespace server {
+
+ResampleDescription describe_resampling(double record_dt_s, double run_dt_s, const std::string& mode) {
+  ResampleDescription d;
+  d.record_dt_s = record_dt_s;
+  d.run_dt_s = run_dt_s;
+  d.mode = mode;
+  const double ratio = record_dt_s / run_dt_s;
+  const double whole = std::round(ratio);
+  if (whole >= 1.0 && std::abs(ratio - whole) <= 1e-9 * ratio) d.steps_per_sample = static_cast<long>(whole);
+  std::ostringstream o;
+  o << std::setprecision(10) << "record step " << record_dt_s << " s, run step " << run_dt_s << " s: ";
+  if (d.steps_per_sample == 1) {
+    o << "one step per record sample, no interpolation";
+  } else if (d.steps_per_sample > 1) {
+    o << "linear interpolation, " << d.steps_per_sample << " steps per record sample, every sample on a step";
+  } else {
+    o << "linear interpolation between record samples (the run step does not divide the record step: "
+         "samples fall between steps)";
+  }
+  d.text = o.str();
+  return d;
+}
+
+void check_resampling(const RunConfig& config, double record_dt_s) {
+  if (config.record.resample != "exact") return;
+  const ResampleDescription d = describe_resampling(record_dt_s, config.dt_s, "exact");
+  if (d.steps_per_sample == 0) {
+    std::ostringstream o;
+    o << std::setprecision(10) << config.source_file << ": record.resample: exact needs the record step ("
+      << record_dt_s << " s) to be a whole number of run steps (run.dt_s " << config.dt_s
+      << " s); use resample: linear or a run.dt_s such as " << record_dt_s / std::max(1.0, std::ceil(record_dt_s / config.dt_s))
+      << " s";
+    throw common::ConfigError(o.str());
+  }
 }
 
 }  // namespace server

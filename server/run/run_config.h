@@ -9,6 +9,8 @@
 #include "damper/physical/physical_config.h"
 #include "structure/shear_building.h"
 
+#include "structure/integrator.h"
+
 #include <map>
 #include <string>
 
@@ -25,6 +27,10 @@ struct RecordSettings {
   /// Simulated duration, s: > 0 and at most the record's duration; < 0 means the whole
   /// record; 0 is refused (a run of no step).
   double duration_s = -1.0;
+  /// How the record reaches the run's step: "linear" (default) interpolates linearly between
+  /// samples at any dt_s; "exact" additionally requires the record's step to be a whole number
+  /// of run steps, so every record sample is a step time (nothing between samples is lost).
+  std::string resample = "linear";
 };
 
 /// How the server talks to the substructure.
@@ -61,6 +67,8 @@ struct RunConfig {
   std::string source_file;           ///< the YAML file this came from
   std::string name = "run";          ///< letters, digits, '.', '_', '-' (part of the run id)
   double dt_s = 1.0 / 1024.0;        ///< integration (and substructure) time step, <= the record's DT
+  /// `run.integrator` (cr | kr_alpha) and `run.rho_inf` (kr_alpha only), structure/integrator.h.
+  structure::IntegratorSettings integrator;
   /// Physics check after the run: |input − stored − dissipated| / |input| above this makes
   /// the status "failed". The run's centred-difference ledger closes to round-off for every
   /// integrator (structure/energy.h: 1.6e-15 over 30 s of El Centro), so anything above 1e-6
@@ -68,7 +76,10 @@ struct RunConfig {
   double max_energy_balance_error = 1e-6;
   RecordSettings record;
   structure::BuildingParams building;
+  /// The `damper:` block may be left out when the building has no dampers; then
+  /// has_damper_block is false and damper_model keeps its defaults (never used).
   DamperSettings damper;
+  bool has_damper_block = true;
   damper::BrfdParams damper_model;   ///< loaded from damper.model_config
   /// `rig:` block, used when damper.mode is physical (docs/physical.md); optional, defaults
   /// = a local brfd-rig with rig-default.yaml beside the run config.
@@ -82,6 +93,9 @@ struct RunConfig {
   std::map<std::string, std::string> key_location;
   /// "file:line: key: " prefix for a message about `key` (just the file if unknown).
   std::string at(const std::string& key) const;
+  /// Set by the caller once the record is read (describe_resampling().text): written as a
+  /// comment under record: in the effective config.
+  std::string resampling_note;
 };
 
 /// Loads and validates a run config; throws common::ConfigError naming file, line and key.
@@ -97,5 +111,20 @@ long check_run_against_record(const RunConfig& config, double record_dt_s, doubl
 
 /// The effective config (every value used, defaults filled in) as YAML.
 std::string run_config_to_yaml(const RunConfig& config);
+
+/// How the record's samples reach the run's steps, stated in summaries and the effective
+/// config: the record's own step, the run's step and the interpolation.
+struct ResampleDescription {
+  double record_dt_s = 0.0;
+  double run_dt_s = 0.0;
+  std::string mode;           ///< "linear" or "exact" (record.resample)
+  long steps_per_sample = 0;  ///< run steps per record sample when whole, else 0
+  std::string text;           ///< one line, e.g. "record step 0.01 s, run step 0.0009765625 s: linear interpolation; ..."
+};
+ResampleDescription describe_resampling(double record_dt_s, double run_dt_s, const std::string& mode);
+
+/// record.resample exact: throws common::ConfigError naming the config file, record.resample
+/// and both steps unless the record's step is a whole number of run steps.
+void check_resampling(const RunConfig& config, double record_dt_s);
 
 }  // namespace server

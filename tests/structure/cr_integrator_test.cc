@@ -1,4 +1,6 @@
 #include "structure/cr_integrator.h"
+#include "structure/energy.h"
+#include "structure/kr_alpha_integrator.h"
 #include "structure/ground_motion.h"
 
 #include "sdof_closed_form.h"
@@ -214,6 +216,34 @@ TEST(CrIntegrator, StepsAllocateNothing) {
   g_count_allocations = false;
   EXPECT_GT(g_allocations.load(), 0);
   EXPECT_EQ(copy.size(), 3);
+#else
+  GTEST_SKIP() << "allocation counting needs glibc";
+#endif
+}
+
+// KR-α's predict/complete and the centred-difference energy ledger allocate nothing either.
+TEST(KrAlphaIntegrator, StepsAndLedgerAllocateNothing) {
+#if defined(STRUCTURE_CAN_COUNT_ALLOCATIONS)
+  BuildingParams p;
+  p.story_mass_kip_s2_per_in = {0.2, 0.2, 0.2};
+  p.story_stiffness_kip_per_in = {150, 150, 150};
+  p.dampers = {{1, 1.0}};
+  const ShearBuilding b(p);
+  KrAlphaIntegrator kr(b, kDt, 0.5);
+  EnergyLedger ledger(b);
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(1);
+  kr.initialize(1.0, force);
+  ledger.start(kr.displacement_in(), kr.velocity_in_per_s(), 1.0, force);
+  g_allocations = 0;
+  g_count_allocations = true;
+  for (int n = 0; n < 100; ++n) {
+    kr.predict();
+    force(0) = 0.5 * kr.next_velocity_in_per_s()(0);
+    kr.complete(std::sin(0.1 * n), force);
+    ledger.add_step(kDt, kr.displacement_in(), kr.velocity_in_per_s(), std::sin(0.1 * n), force);
+  }
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0);
 #else
   GTEST_SKIP() << "allocation counting needs glibc";
 #endif

@@ -32,11 +32,79 @@ std::string load_error(const std::string& text) {
 }
 
 TEST(RunConfig, ShippedConfigsLoad) {
-  for (const char* name : {"three-story.yaml", "ten-story.yaml"}) {
+  for (const char* name : {"three-story.yaml", "ten-story.yaml", "twenty-story.yaml"}) {
     const server::RunConfig c = server::load_run_config(test_paths::source_dir() + "/configs/" + name);
     EXPECT_FALSE(c.transport.url.empty()) << name;
     EXPECT_GE(c.building.dampers.size(), 1u) << name;
   }
+  const server::RunConfig twenty = server::load_run_config(test_paths::source_dir() + "/configs/twenty-story.yaml");
+  EXPECT_EQ(twenty.integrator.kind, "kr_alpha");
+  EXPECT_EQ(twenty.integrator.rho_inf, 0.5);
+  EXPECT_EQ(twenty.building.story_mass_kip_s2_per_in.size(), 20u);
+  EXPECT_EQ(server::load_run_config(test_paths::source_dir() + "/configs/three-story.yaml").integrator.kind, "cr");
+}
+
+TEST(RunConfig, IntegratorKeys) {
+  const std::string kr = std::regex_replace(three_story_text(), std::regex("  dt_s: ([^\n]*)\n"),
+                                            "  dt_s: $1\n  integrator: kr_alpha\n  rho_inf: 0.25\n");
+  const std::string path = test_support::fresh_temp_dir("cfg") + "/kr.yaml";
+  test_support::write_text(path, kr);
+  const server::RunConfig c = server::load_run_config(path);
+  EXPECT_EQ(c.integrator.kind, "kr_alpha");
+  EXPECT_EQ(c.integrator.rho_inf, 0.25);
+  // The effective config keeps both keys.
+  const std::string eff = test_support::fresh_temp_dir("eff") + "/effective.yaml";
+  test_support::write_text(eff, server::run_config_to_yaml(c));
+  EXPECT_EQ(server::load_run_config(eff).integrator.rho_inf, 0.25);
+
+  std::string err = load_error(std::regex_replace(kr, std::regex("rho_inf: 0.25"), "rho_inf: 1.5"));
+  EXPECT_NE(err.find("run.rho_inf"), std::string::npos) << err;
+  err = load_error(std::regex_replace(kr, std::regex("integrator: kr_alpha"), "integrator: newmark"));
+  EXPECT_NE(err.find("run.integrator"), std::string::npos) << err;
+  err = load_error(std::regex_replace(kr, std::regex("integrator: kr_alpha"), "integrator: cr"));
+  EXPECT_NE(err.find("run.rho_inf"), std::string::npos) << err;  // rho_inf means nothing to CR
+  err = load_error(std::regex_replace(three_story_text(), std::regex("  scale: 1.0"), "  scale: 1.0\n  resample: cubic"));
+  EXPECT_NE(err.find("record.resample"), std::string::npos) << err;
+}
+
+// A building without dampers needs neither a damper block nor a transport block.
+TEST(RunConfig, NoDampersNeedNoDamperBlock) {
+  std::string text = three_story_text();
+  text = std::regex_replace(text, std::regex("  dampers:\n(    [^\n]*\n)+"), "");
+  text = std::regex_replace(text, std::regex("\ndamper:\n(  [^\n]*\n)+"), "\n");
+  text = std::regex_replace(text, std::regex("\ntransport:\n(  [^\n]*\n)+"), "\n");
+  ASSERT_EQ(text.find("damper:"), std::string::npos) << text;
+  const std::string path = test_support::fresh_temp_dir("cfg") + "/bare.yaml";
+  test_support::write_text(path, text);
+  const server::RunConfig c = server::load_run_config(path);
+  EXPECT_TRUE(c.building.dampers.empty());
+  EXPECT_FALSE(c.has_damper_block);
+  EXPECT_EQ(c.transport.kind, "in_process");
+  const std::string eff = test_support::fresh_temp_dir("eff") + "/effective.yaml";
+  test_support::write_text(eff, server::run_config_to_yaml(c));
+  EXPECT_FALSE(server::load_run_config(eff).has_damper_block);
+  // With dampers the block is still required.
+  const std::string err = load_error(std::regex_replace(three_story_text(), std::regex("\ndamper:\n(  [^\n]*\n)+"), "\n"));
+  EXPECT_NE(err.find("damper"), std::string::npos) << err;
+}
+
+// record.resample: exact only where the run step divides the record step.
+TEST(RunConfig, ResampleExactNeedsAWholeNumberOfStepsPerSample) {
+  server::RunConfig c = server::load_run_config(test_paths::source_dir() + "/configs/three-story.yaml");
+  EXPECT_NO_THROW(server::check_resampling(c, 0.01));  // linear: anything goes
+  c.record.resample = "exact";
+  try {
+    server::check_resampling(c, 0.01);
+    ADD_FAILURE() << "1/1024 s does not divide 0.01 s";
+  } catch (const common::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("record.resample"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0.01"), std::string::npos) << e.what();
+  }
+  c.dt_s = 0.0025;
+  EXPECT_NO_THROW(server::check_resampling(c, 0.01));
+  EXPECT_EQ(server::describe_resampling(0.01, 0.0025, "exact").steps_per_sample, 4);
+  EXPECT_EQ(server::describe_resampling(0.01, 1.0 / 1024, "linear").steps_per_sample, 0);
+  EXPECT_NE(server::describe_resampling(0.01, 1.0 / 1024, "linear").text.find("does not divide"), std::string::npos);
 }
 
 TEST(RunConfig, UnknownKeyIsNamed) {
