@@ -244,9 +244,16 @@ std::string mutate_config(const std::string& base, int i, std::mt19937& rng, std
       break;
     }
     case 7: {  // truncated before the last required section
-      std::size_t last = 0;
-      for (const KeyLine& k : keys) if (k.key == "transport") last = k.index;
-      lines.resize(1 + pick(last));
+      // Cut anywhere before transport, except right before `dampers:`: a building with no
+      // dampers needs no damper or transport block (issue 15), so that cut is a valid config.
+      std::size_t last = 0, dampers_line = 0;
+      for (const KeyLine& k : keys) {
+        if (k.key == "transport") last = k.index;
+        if (k.key == "dampers") dampers_line = k.index;
+      }
+      std::size_t keep = 1 + pick(last);
+      if (keep == dampers_line) keep = dampers_line + 1 + pick(last - dampers_line);
+      lines.resize(keep);
       what = "truncated to " + std::to_string(lines.size()) + " lines";
       break;
     }
