@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <regex>
+#include <cctype>
 #include <sstream>
 
 namespace structure {
@@ -38,55 +38,173 @@ double GroundMotion::accel_in_per_s2(double t_s) const {
 namespace {
 
 // A Fortran-style real: optional sign, digits with an optional point (or a leading point),
-// optional exponent with E or D. Run-together values such as "-.12E-02-.36E-02" are split
-// because every value must be followed by whitespace, a comma (two-column files), a sign or
-// the end of the line.
-const std::regex& number_regex() {
-  static const std::regex re(R"([-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?)");
-  return re;
+// optional exponent with E or D — the grammar [-+]?(\d+\.?\d*|\.\d+)([EeDd][-+]?\d+)?, matched
+// greedily from the start (an exponent without digits is not part of the number). Run-together
+// values such as "-.12E-02-.36E-02" are split because every value must be followed by
+// whitespace, a comma (two-column files), a sign or the end of the line.
+// Scanned by hand: std::regex cost about 25 ms per record (60 M instructions for El Centro),
+// the largest fixed cost of a short batch or IDA run (docs/step-loop-profile.md).
+// Returns the end of the number starting at `p`, or `p` if none starts there.
+const char* scan_number(const char* p, const char* end) {
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const char* q = p;
+  if (q != end && (*q == '-' || *q == '+')) ++q;
+  if (q != end && digit(*q)) {
+    while (q != end && digit(*q)) ++q;
+    if (q != end && *q == '.') ++q;
+    while (q != end && digit(*q)) ++q;
+  } else if (q != end && *q == '.' && q + 1 != end && digit(q[1])) {
+    q += 2;
+    while (q != end && digit(*q)) ++q;
+  } else {
+    return p;
+  }
+  if (q != end && (*q == 'E' || *q == 'e' || *q == 'D' || *q == 'd')) {
+    const char* e = q + 1;
+    if (e != end && (*e == '-' || *e == '+')) ++e;
+    if (e != end && digit(*e)) {
+      while (e != end && digit(*e)) ++e;
+      q = e;
+    }
+  }
+  return q;
 }
 
 std::string where(const std::string& path, std::size_t line_no) {
   return path + ":" + std::to_string(line_no);
 }
 
-// Splits one line into finite numbers. `allow_comma`: commas separate values (two-column).
-// Throws RecordError naming file and line on anything else.
-std::vector<double> parse_numbers(const std::string& line, const std::string& path,
-                                  std::size_t line_no, bool allow_comma) {
-  std::vector<double> out;
-  const std::regex& re = number_regex();
-  auto it = line.cbegin();
-  const auto end = line.cend();
+// Appends the finite numbers of one line to `out`. `allow_comma`: commas separate values
+// (two-column). Throws RecordError naming file and line on anything else.
+void parse_numbers(const std::string& line, const std::string& path, std::size_t line_no, bool allow_comma,
+                   std::vector<double>& out) {
+  const char* it = line.data();
+  const char* const end = it + line.size();
   auto is_sep = [allow_comma](char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || (allow_comma && c == ',');
   };
+  char token[128];
   while (it != end) {
     if (is_sep(*it)) {
       ++it;
       continue;
     }
-    std::smatch m;
-    const bool ok = std::regex_search(it, end, m, re, std::regex_constants::match_continuous);
-    const auto token_end = ok ? m[0].second : it;
+    const char* const token_end = scan_number(it, end);
     const bool well_terminated =
-        ok && (token_end == end || is_sep(*token_end) || *token_end == '-' || *token_end == '+');
+        token_end != it && (token_end == end || is_sep(*token_end) || *token_end == '-' || *token_end == '+');
     if (!well_terminated) {
-      auto bad_end = it;
+      const char* bad_end = it;
       while (bad_end != end && !is_sep(*bad_end)) ++bad_end;
       throw RecordError(where(path, line_no) + ": non-numeric token '" + std::string(it, bad_end) + "'");
     }
-    std::string token(it, token_end);
-    std::replace(token.begin(), token.end(), 'D', 'E');
-    std::replace(token.begin(), token.end(), 'd', 'E');
-    const double v = std::strtod(token.c_str(), nullptr);
+    // strtod of the token (a Fortran D exponent written as E), as before: the same doubles.
+    const std::size_t length = static_cast<std::size_t>(token_end - it);
+    std::string long_token;
+    char* text = token;
+    if (length >= sizeof token) {
+      long_token.assign(it, token_end);
+      text = long_token.data();
+    } else {
+      std::copy(it, token_end, token);
+      token[length] = '\0';
+    }
+    for (char* c = text; *c; ++c)
+      if (*c == 'D' || *c == 'd') *c = 'E';
+    const double v = std::strtod(text, nullptr);
     if (!std::isfinite(v)) {
       throw RecordError(where(path, line_no) + ": value '" + std::string(it, token_end) + "' is not finite");
     }
     out.push_back(v);
     it = token_end;
   }
+}
+
+std::vector<double> parse_numbers(const std::string& line, const std::string& path, std::size_t line_no,
+                                  bool allow_comma) {
+  std::vector<double> out;
+  parse_numbers(line, path, line_no, allow_comma, out);
   return out;
+}
+
+// Line 4 of a PEER AT2 file, matched by hand (the grammars below, case-insensitive, as the
+// std::regex patterns they replace; \s is ASCII white space):
+//   style a (searched anywhere): NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.Ee+-]+)
+//   style b (from the start):    ^\s*(\d+)\s+([0-9.Ee+-]+)\s+NPTS\s*,\s*DT
+struct AT2Header {
+  std::string npts, dt;  // the two captured texts
+};
+
+bool space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool dt_char(char c) { return is_digit(c) || c == '.' || c == 'E' || c == 'e' || c == '+' || c == '-'; }
+
+/// Whether `word` (upper case) is at `i` of `s`, ignoring case.
+bool word_at(const std::string& s, std::size_t i, const char* word) {
+  for (; *word; ++word, ++i)
+    if (i >= s.size() || std::toupper(static_cast<unsigned char>(s[i])) != *word) return false;
+  return true;
+}
+
+/// First position >= `from` of `word` (upper case) in `s`, ignoring case; npos if none.
+std::size_t find_word(const std::string& s, std::size_t from, const char* word) {
+  for (std::size_t i = from; i < s.size(); ++i)
+    if (word_at(s, i, word)) return i;
+  return std::string::npos;
+}
+
+std::size_t skip(const std::string& s, std::size_t i, bool (*in)(char)) {
+  while (i < s.size() && in(s[i])) ++i;
+  return i;
+}
+
+bool match_header_a(const std::string& s, AT2Header& h) {
+  for (std::size_t at = find_word(s, 0, "NPTS"); at != std::string::npos; at = find_word(s, at + 1, "NPTS")) {
+    std::size_t i = skip(s, at + 4, space);
+    if (i >= s.size() || s[i] != '=') continue;
+    i = skip(s, i + 1, space);
+    const std::size_t npts_begin = i;
+    i = skip(s, i, is_digit);
+    if (i == npts_begin) continue;
+    const std::size_t npts_end = i;
+    i = skip(s, i, space);
+    if (i < s.size() && s[i] == ',') ++i;
+    i = skip(s, i, space);
+    if (!word_at(s, i, "DT")) continue;
+    i = skip(s, i + 2, space);
+    if (i >= s.size() || s[i] != '=') continue;
+    i = skip(s, i + 1, space);
+    const std::size_t dt_begin = i;
+    i = skip(s, i, dt_char);
+    if (i == dt_begin) continue;
+    h.npts = s.substr(npts_begin, npts_end - npts_begin);
+    h.dt = s.substr(dt_begin, i - dt_begin);
+    return true;
+  }
+  return false;
+}
+
+bool match_header_b(const std::string& s, AT2Header& h) {
+  std::size_t i = skip(s, 0, space);
+  const std::size_t npts_begin = i;
+  i = skip(s, i, is_digit);
+  if (i == npts_begin) return false;
+  const std::size_t npts_end = i;
+  if (skip(s, i, space) == i) return false;
+  i = skip(s, i, space);
+  const std::size_t dt_begin = i;
+  i = skip(s, i, dt_char);
+  if (i == dt_begin) return false;
+  const std::size_t dt_end = i;
+  if (skip(s, i, space) == i) return false;
+  i = skip(s, i, space);
+  if (!word_at(s, i, "NPTS")) return false;
+  i = skip(s, i + 4, space);
+  if (i >= s.size() || s[i] != ',') return false;
+  i = skip(s, i + 1, space);
+  if (!word_at(s, i, "DT")) return false;
+  h.npts = s.substr(npts_begin, npts_end - npts_begin);
+  h.dt = s.substr(dt_begin, dt_end - dt_begin);
+  return true;
 }
 
 bool blank(const std::string& line) {
@@ -121,10 +239,7 @@ GroundMotion read_at2(const std::vector<std::string>& lines, const std::string& 
   gm.dt_s = dt;
   // A value takes at least one character: never reserve more than the file can hold.
   gm.accel_g.reserve(std::min(static_cast<std::size_t>(npts), data_chars));
-  for (std::size_t i = 4; i < lines.size(); ++i) {
-    const std::vector<double> values = parse_numbers(lines[i], path, i + 1, false);
-    gm.accel_g.insert(gm.accel_g.end(), values.begin(), values.end());
-  }
+  for (std::size_t i = 4; i < lines.size(); ++i) parse_numbers(lines[i], path, i + 1, false, gm.accel_g);
   const long count = static_cast<long>(gm.accel_g.size());
   if (count != npts) {
     throw RecordError(path + ": header (line 4) says NPTS = " + std::to_string(npts) + " but the file holds " +
@@ -209,31 +324,26 @@ GroundMotion read_ground_motion(const std::string& path, double scale) {
   if (in.bad()) throw RecordError(path + ": read error");
 
   // PEER AT2: line 4 holds NPTS and DT in one of two styles.
-  static const std::regex hdr_a(R"(NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.Ee+-]+))", std::regex::icase);
-  static const std::regex hdr_b(R"(^\s*(\d+)\s+([0-9.Ee+-]+)\s+NPTS\s*,\s*DT)", std::regex::icase);
-  static const std::regex npts_word("NPTS", std::regex::icase);
-  if (lines.size() >= 4) {
-    std::smatch m;
-    if (std::regex_search(lines[3], m, hdr_a) || std::regex_search(lines[3], m, hdr_b)) {
-      errno = 0;
-      long npts = std::strtol(m[1].str().c_str(), nullptr, 10);
-      if (errno == ERANGE) npts = std::numeric_limits<long>::max();
-      char* dt_end = nullptr;
-      const std::string dt_text = m[2].str();
-      const double dt = std::strtod(dt_text.c_str(), &dt_end);
-      if (dt_end != dt_text.c_str() + dt_text.size()) {
-        throw RecordError(where(path, 4) + ": cannot read DT '" + dt_text + "'");
-      }
-      std::size_t data_chars = 0;
-      for (std::size_t i = 4; i < lines.size(); ++i) data_chars += lines[i].size();
-      GroundMotion gm = read_at2(lines, path, npts, dt, data_chars, m[1].str());
-      gm.scale = scale;
-      for (double& a : gm.accel_g) a *= scale;
-      return gm;
+  AT2Header header;
+  if (lines.size() >= 4 && (match_header_a(lines[3], header) || match_header_b(lines[3], header))) {
+    errno = 0;
+    long npts = std::strtol(header.npts.c_str(), nullptr, 10);
+    if (errno == ERANGE) npts = std::numeric_limits<long>::max();
+    char* dt_end = nullptr;
+    const std::string& dt_text = header.dt;
+    const double dt = std::strtod(dt_text.c_str(), &dt_end);
+    if (dt_end != dt_text.c_str() + dt_text.size()) {
+      throw RecordError(where(path, 4) + ": cannot read DT '" + dt_text + "'");
     }
+    std::size_t data_chars = 0;
+    for (std::size_t i = 4; i < lines.size(); ++i) data_chars += lines[i].size();
+    GroundMotion gm = read_at2(lines, path, npts, dt, data_chars, header.npts);
+    gm.scale = scale;
+    for (double& a : gm.accel_g) a *= scale;
+    return gm;
   }
   for (std::size_t i = 0; i < std::min<std::size_t>(lines.size(), 4); ++i) {
-    if (std::regex_search(lines[i], npts_word)) {
+    if (find_word(lines[i], 0, "NPTS") != std::string::npos) {
       throw RecordError(where(path, 4) +
                         ": looks like a PEER AT2 file but line 4 does not hold NPTS and DT "
                         "('NPTS= 4000, DT= .0100 SEC' or '4000 0.0100 NPTS, DT')");

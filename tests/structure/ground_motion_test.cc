@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace structure {
@@ -62,6 +64,29 @@ TEST(GroundMotion, SplitsRunTogetherNegatives) {
   ASSERT_EQ(gm.accel_g.size(), 10u);
   const double expected[10] = {-1.234e-3, -3.616e-3, 5e-3, -7e-2, -0.1, 2e-3, -3e-3, -4e-3, 1e-2, 2e-2};
   for (int i = 0; i < 10; ++i) EXPECT_DOUBLE_EQ(gm.accel_g[i], expected[i]) << i;
+}
+
+// The record reader scans numbers by hand (no std::regex): the Fortran forms a PEER file
+// may hold, each equal to strtod of its text (D exponent read as E), and what is not a number.
+TEST(GroundMotion, FortranNumberFormsReadExactly) {
+  const std::string path = ::testing::TempDir() + "/fortran_forms.AT2";
+  auto write = [&](const std::string& data, const std::string& npts) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "PEER\nrecord\nACCELERATION IN UNITS OF G\nnpts=%s, dt=.0100 sec\n%s\n", npts.c_str(), data.c_str());
+    std::fclose(f);
+  };
+  write("1.e-2 +.5 5. -3 .25D+01 7d-3 1.5E2-2.5e-1+4 0.1234567890123456789", "10");
+  const GroundMotion gm = read_ground_motion(path);
+  ASSERT_EQ(gm.accel_g.size(), 10u);
+  const double expected[10] = {std::strtod("1.e-2", nullptr), 0.5, 5.0, -3.0, 2.5, 7e-3, 150.0, -0.25, 4.0,
+                               std::strtod("0.1234567890123456789", nullptr)};
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(gm.accel_g[i], expected[i]) << i;  // bit for bit
+  // An exponent without digits, a lone point, a letter after a number: not numbers.
+  for (const char* bad : {"1.0 2e+ 3.0", "1.0 . 3.0", "1.0 2.0x 3.0", "1.0 e5 3.0"}) {
+    write(bad, "3");
+    expect_record_error(path, {"fortran_forms.AT2:5", "non-numeric token"});
+  }
 }
 
 TEST(GroundMotion, TruncatedFileNamesFileAndCounts) {
