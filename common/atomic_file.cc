@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 namespace common {
 
@@ -23,6 +24,57 @@ bool fsync_path(const std::string& path) {
   ::close(fd);
   errno = err;
   return rc == 0;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw FileWriteError("cannot write " + path + ": " + system_error_text(errno));
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      throw FileWriteError("cannot write " + path + " (write): " + system_error_text(err));
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) throw FileWriteError("cannot write " + path + " (close): " + system_error_text(errno));
+}
+
+void sync_folder_files(const std::string& folder) {
+  std::vector<std::pair<int, std::string>> files;
+  auto close_all = [&] {
+    for (const auto& f : files) ::close(f.first);
+  };
+  std::error_code ec;
+  for (const std::filesystem::directory_entry& e : std::filesystem::directory_iterator(folder, ec)) {
+    if (!e.is_regular_file(ec)) continue;
+    const int fd = ::open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+      const int err = errno;
+      close_all();
+      throw FileWriteError("cannot sync " + e.path().string() + ": " + system_error_text(err));
+    }
+    files.emplace_back(fd, e.path().string());
+    ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);  // start the write-back, do not wait
+  }
+  if (ec) {
+    close_all();
+    throw FileWriteError("cannot list " + folder + ": " + ec.message());
+  }
+  for (const auto& [fd, name] : files) {
+    if (::fsync(fd) != 0) {
+      const int err = errno;
+      close_all();
+      throw FileWriteError("cannot sync " + name + ": " + system_error_text(err));
+    }
+  }
+  close_all();
+  if (!fsync_path(folder)) throw FileWriteError("cannot sync folder " + folder + ": " + system_error_text(errno));
 }
 
 void write_file_atomic(const std::string& path, const std::string& text) {

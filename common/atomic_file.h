@@ -25,4 +25,16 @@ void write_file_atomic(const std::string& path, const std::string& text);
 /// fsync()s a file or folder by path; returns false (errno set) if it cannot be opened or synced.
 bool fsync_path(const std::string& path);
 
+/// Writes `text` to `path` (created or truncated) without fsync; throws FileWriteError naming
+/// the file on any failed write or close. For files in a folder that becomes visible only by
+/// a rename after sync_folder_files() (a batch run's `<label>.partial/`): one sync for all
+/// of them at the end instead of one temporary file, fsync and folder fsync per file.
+void write_file(const std::string& path, const std::string& text);
+
+/// Makes every regular file of `folder` and the folder itself durable: starts the write-back
+/// of all files at once (sync_file_range), then fsync()s each and the folder, so the journal
+/// commits once or twice instead of once per file. Throws FileWriteError naming the file when
+/// a sync fails (a full disk can first show at fsync with delayed allocation).
+void sync_folder_files(const std::string& folder);
+
 }  // namespace common

@@ -54,7 +54,7 @@ int batch_bench(const BatchOptions& o) {
   std::vector<int> jobs_list{1, 2};
   for (int j = 4; j <= max_jobs; j *= 2) jobs_list.push_back(j);
   if (max_jobs > 2 && jobs_list.back() != max_jobs) jobs_list.push_back(max_jobs);
-  std::map<int, std::vector<double>> rates, cpu_per_record;
+  std::map<int, std::vector<double>> rates, cpu_per_record, cpu_x_realtime;
   std::cout << "bench: " << b.records.size() << " records, "
             << (b.duration_s > 0 ? common::format_fixed(b.duration_s, 1) + " s simulated each" : std::string("whole records"))
             << ", dt " << common::format_shortest(config.dt_s) << " s, " << std::thread::hardware_concurrency() << " cores, "
@@ -79,22 +79,37 @@ int batch_bench(const BatchOptions& o) {
       const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
       const double cpu = children_cpu_s() - cpu0;
       std::vector<RunResult> results;
-      for (const BatchRecord& r : b.records) results.push_back(read_result(run.out, r.label));
+      double simulated_s = 0.0;  // from each run's summary.json
+      for (const BatchRecord& r : b.records) {
+        results.push_back(read_result(run.out, r.label));
+        const nlohmann::json& j = results.back().summary;
+        if (j.is_object() && j.contains("sim_time_s") && j["sim_time_s"].is_number()) simulated_s += j["sim_time_s"].get<double>();
+      }
       last = count(results);
       last_wall = wall;
       const double rate = b.records.size() / wall;
       rates[jobs].push_back(rate);
       cpu_per_record[jobs].push_back(cpu / b.records.size());
+      // CPU time (user + system of the workers and their substructures, getrusage) does not
+      // count the time a run waits for a core that another process holds: on a shared
+      // machine it is the steadier figure. x real time on CPU = simulated / CPU seconds.
+      cpu_x_realtime[jobs].push_back(cpu > 0.0 ? simulated_s / cpu : 0.0);
       std::cout << "pass " << pass << " jobs=" << jobs << ": " << b.records.size() << " records in " << common::format_fixed(wall, 2)
-                << " s = " << common::format_fixed(rate, 3) << " records/s, CPU " << common::format_fixed(cpu / b.records.size(), 2)
-                << " s per record (" << common::format_fixed(cpu / wall, 2) << " cores busy), ok " << last.ok << ", failed "
-                << last.failed << std::endl;
+                << " s = " << common::format_fixed(rate, 3) << " records/s (wall), " << common::format_fixed(simulated_s / wall, 0)
+                << "x real time on wall; CPU " << common::format_fixed(cpu / b.records.size(), 3) << " s per record = "
+                << common::format_fixed(cpu > 0.0 ? simulated_s / cpu : 0.0, 0) << "x real time on CPU ("
+                << common::format_fixed(cpu / wall, 2) << " cores busy), ok " << last.ok << ", failed " << last.failed
+                << std::endl;
     }
   }
   for (int jobs : jobs_list) {
     const auto& r = rates[jobs];
+    const auto& c = cpu_per_record[jobs];
     std::cout << "jobs=" << jobs << ": " << common::format_fixed(*std::max_element(r.begin(), r.end()), 3) << " records/s best, "
-              << common::format_fixed(median(r), 3) << " median" << std::endl;
+              << common::format_fixed(median(r), 3) << " median (wall); CPU per record "
+              << common::format_fixed(*std::min_element(c.begin(), c.end()), 3) << " s best, "
+              << common::format_fixed(median(c), 3) << " s median; "
+              << common::format_fixed(median(cpu_x_realtime[jobs]), 0) << "x real time on CPU (median)" << std::endl;
   }
   std::string summary = "bench_efficiency_pct";
   for (std::size_t k = 1; k < jobs_list.size(); ++k) {
@@ -107,6 +122,13 @@ int batch_bench(const BatchOptions& o) {
               << common::format_fixed(100.0 * best / j2, 1) << " % (best), " << common::format_fixed(100.0 * med / j2, 1)
               << " % (median)" << std::endl;
     summary += " jobs" + std::to_string(j2) + "=" + common::format_fixed(100.0 * best / j2, 1);
+    // Work per record at j2 jobs against 1 job: the part of the scaling loss that parallel
+    // runs cause themselves (contention for memory, disk, kernel), apart from the cores other
+    // processes take (which wall time includes). 100 % = no extra work per record.
+    const double cpu1 = median(cpu_per_record[1]), cpu2 = median(cpu_per_record[j2]);
+    std::cout << "CPU per record with " << j2 << " jobs vs 1: " << common::format_fixed(cpu2, 3) << " s vs "
+              << common::format_fixed(cpu1, 3) << " s (median): CPU-time efficiency "
+              << common::format_fixed(cpu2 > 0.0 ? 100.0 * cpu1 / cpu2 : 0.0, 1) << " %" << std::endl;
   }
   std::cout << summary << std::endl;
   print_final_line(last, last_wall);

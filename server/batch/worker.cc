@@ -2,6 +2,7 @@
 // network namespace, written to <label>.partial/ and renamed to <label>/ when durable.
 #include "server/batch/batch.h"
 
+#include "common/atomic_file.h"
 #include "common/process.h"
 #include "messages/lcm_bus.h"
 #include "server/batch/batch_files.h"
@@ -31,7 +32,6 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 using batch_internal::fsync_path;
-using batch_internal::write_file_atomic;
 using batch_internal::unblock_stop_signals;
 using batch_internal::utc_now;
 
@@ -131,10 +131,13 @@ int batch_worker_command(const BatchWorkerOptions& w) {
   info["wall_s"] = std::chrono::duration<double>(Clock::now() - t0).count();
   info["finished_utc"] = utc_now();
   try {
+    // Plain writes into <label>.partial/ (a full disk throws): the folder becomes a result only
+    // by the rename below, after one sync of all its files, so no file needs its own
+    // temporary name and fsync (each of those cost a journal commit; docs/batch.md).
     std::ostringstream info_text;
     info_text << std::setw(2) << info << "\n";
-    write_file_atomic(partial / "batch-run.json", info_text.str());  // a full disk throws, never 0 bytes
-    write_summary_json(summary, config, (partial / "summary.json").string());
+    common::write_file((partial / "batch-run.json").string(), info_text.str());
+    common::write_file((partial / "summary.json").string(), summary_json_text(summary, config));
   } catch (const std::exception& e) {
     std::cerr << "hybridsim batch worker: cannot write results: " << e.what() << "\n";
     return kWorkerInfraFailed;
@@ -145,11 +148,15 @@ int batch_worker_command(const BatchWorkerOptions& w) {
               << ", redone on resume)\n";
     return kWorkerInfraFailed;
   }
-  // Durable, then visible: every file on disk before the rename makes the run final.
-  for (const fs::directory_entry& e : fs::directory_iterator(partial))
-    if (e.is_regular_file()) fsync_path(e.path());
-  fsync_path(partial);
+  // Durable, then visible: every file on disk before the rename makes the run final. A sync
+  // that fails (a full disk showing at write-back) leaves the folder .partial: redone on resume.
   std::cout << std::flush;
+  try {
+    common::sync_folder_files(partial.string());
+  } catch (const std::exception& e) {
+    std::cerr << "hybridsim batch worker: " << e.what() << " (left in " << partial.string() << ", redone on resume)\n";
+    return kWorkerInfraFailed;
+  }
   // renameat2(RENAME_NOREPLACE): never replaces a finished result.
   if (::renameat2(AT_FDCWD, partial.c_str(), AT_FDCWD, final_path.c_str(), RENAME_NOREPLACE) != 0) {
     std::cerr << "hybridsim batch worker: cannot rename " << partial.string() << " to " << final_path.string()

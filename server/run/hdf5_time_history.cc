@@ -61,6 +61,9 @@ Hdf5TimeHistory::Hdf5TimeHistory(const std::string& path, const std::vector<std:
     const hid_t space = H5Screate_simple(1, &dims0, &maxdims);
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, 1, &chunk);
+    // Every row up to the extent is written: no fill values to write first (callgrind: the
+    // chunk fill was a quarter of the writer thread's instructions).
+    H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER);
     const hid_t ds = H5Dcreate2(group, columns[i].c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     H5Pclose(dcpl);
     H5Sclose(space);

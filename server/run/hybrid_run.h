@@ -35,6 +35,12 @@ struct RunSummary {
   double sim_time_s = 0.0;            ///< simulated time reached
   double wall_s = 0.0;                ///< wall-clock time of the run, results on disk
   double loop_wall_s = 0.0;           ///< wall-clock time of the step loop alone
+  /// CPU time (CLOCK_THREAD_CPUTIME_ID) of the thread running the step loop, loop alone: what
+  /// the loop costs, apart from the time a loaded machine keeps it waiting for a core.
+  double loop_cpu_s = 0.0;
+  /// CPU time of the whole process (CLOCK_PROCESS_CPUTIME_ID: the loop and the time-history
+  /// writer thread) over the same span as wall_s.
+  double cpu_s = 0.0;
   double pga_g = 0.0;                 ///< peak ground acceleration of the (scaled) record
   Eigen::VectorXd modal_periods_s;    ///< periods of the building's modes, s
   Eigen::VectorXd peak_drift_in;      ///< per story, max |interstory drift|
@@ -94,6 +100,8 @@ const std::vector<std::string>& previous_run_files();
 /// Writes summary.json atomically (common::write_file_atomic); throws
 /// common::FileWriteError naming the file (e.g. on a full disk).
 void write_summary_json(const RunSummary& summary, const RunConfig& config, const std::string& path);
+/// The text of summary.json (what write_summary_json writes).
+std::string summary_json_text(const RunSummary& summary, const RunConfig& config);
 /// Human-readable summary (the lines `hybridsim run` prints).
 std::string format_summary(const RunSummary& summary);
 

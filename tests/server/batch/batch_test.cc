@@ -729,6 +729,9 @@ TEST(Batch, BenchPrintsRecordsPerSecondAndEfficiency) {
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(pass 1 jobs=1: 2 records in [0-9.]+ s = [0-9.]+ records/s)"))) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(pass 1 jobs=2: 2 records in [0-9.]+ s = [0-9.]+ records/s)"))) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(scaling efficiency [0-9.]+ % \(best\))"))) << r.out;
+  // CPU time beside wall time (a shared machine's load only shows in the wall figures).
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(CPU [0-9.]+ s per record = [0-9]+x real time on CPU)"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(CPU-time efficiency [0-9.]+ %)"))) << r.out;
   expect_final_line(r.out, 2, 2, 0);
 }
 
