@@ -206,24 +206,24 @@ void Controller::compute(const Measurements& m, Eigen::MatrixX2d& targets) {
       case Law::passive_off: t = inverse_.initial(); break;
       case Law::passive_on: t = inverse_.strongest(); break;
       case Law::lyapunov: {
-        const FrictionRange r = inverse_.range(v);
-        t = inverse_.targets(force_[k] * v >= 0.0 ? r.max_kip : r.min_kip, v);
+        const FrictionRange r = inverse_.range(v, drum_[k]);
+        t = inverse_.targets(force_[k] * v >= 0.0 ? r.max_kip : r.min_kip, v, drum_[k]);
         break;
       }
       case Law::clipped_optimal: {
-        const FrictionRange r = inverse_.range(v);
+        const FrictionRange r = inverse_.range(v, drum_[k]);
         const double f = force_[k], fd = fd_[k];
         desired_force_[k] = fd;
         double fc = r.min_kip;
         if (fd * f > 0.0) fc = on_off_ ? (std::abs(fd) > std::abs(f) ? r.max_kip : r.min_kip) : std::abs(fd);
-        t = inverse_.targets(fc, v);
+        t = inverse_.targets(fc, v, drum_[k]);
         break;
       }
       case Law::modulated_homogeneous: {
         const double sign = v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0;
         if (sign != 0.0 && last_vel_sign_[k] != 0.0 && sign != last_vel_sign_[k]) reversal_disp_[k] = drum_prev_[k];
         if (sign != 0.0) last_vel_sign_[k] = sign;
-        t = inverse_.targets(config_.gain_kip_per_in * std::abs(reversal_disp_[k]), v);
+        t = inverse_.targets(config_.gain_kip_per_in * std::abs(reversal_disp_[k]), v, drum_[k]);
         break;
       }
     }

@@ -17,6 +17,15 @@
 /// harmonic0.03ea1forward), so Fc <= C_taut * force_limit_lb / 1000. Below, the
 /// friction never drops under max(min_kinetic_friction_kip, fc_floor_kip).
 /// The effect library (damper/effects.h) is not inverted: b and the gains are Eq. (4)'s own.
+///
+/// Band-brake model (damper/model/band_brake_model.h, `model: band_brake`): the actuators set the
+/// slack-end tension (B2), T_slack,d = T_d - k_d1 (x1 - x'1) - k_d2 (x2 - x'2), and the kinetic
+/// friction is (B3) Fc_d = L (E_d - 1) T_slack,d with E_d = exp(mu theta_d(x)) at the current drum
+/// displacement x (B1). That is Eq. (4)'s form exactly, linear in x1, x2, with
+///   b_d = L (E_d - 1) T_d,  G_dj = -L (E_d - 1) k_dj,
+/// so the same inverse applies with these b and gains (evaluated at the drum displacement given,
+/// 0 when none). The taut end carries E_d T_slack,d = Fc E_d / (L (E_d - 1)) (B6 at slip), so the
+/// load-cell bound is Fc <= L (E_d - 1)/E_d * F_limit; the floor is (B2)'s 1e-4 kip slack tension.
 /// Units: kip, in, s, lb for actuator load cells.
 
 #include "damper/model/brfd_model.h"
@@ -42,33 +51,47 @@ struct FrictionRange {
 class FrictionInverse {
  public:
   /// @throws std::invalid_argument if x' is outside the stroke, or a gain of Eq. (4) is not
-  /// negative (retraction must raise the friction), or the model is not semi-active.
+  /// negative (retraction must raise the friction), or the model has no actuators (passive_lugre).
   FrictionInverse(const damper::BrfdParams& params, double min_kinetic_friction_kip = 0.0);
 
-  /// Gain dFc/dx_k of Eq. (4), kip/in, k = 1, 2.
-  double gain_kip_per_in(bool forward, int actuator) const { return gain_[forward ? 0 : 1][actuator - 1]; }
-  /// b of Eq. (4) at drum velocity v, kip.
-  double base_kip(double v_in_per_s) const { return model_.base_kinetic_friction_kip(v_in_per_s); }
+  /// Gain dFc/dx_k of Eq. (4), kip/in, k = 1, 2 (band brake: at drum displacement drum_in).
+  double gain_kip_per_in(bool forward, int actuator, double drum_in = 0.0) const {
+    return linear(forward, forward ? 0.0 : -1.0, drum_in).gain[actuator - 1];
+  }
+  /// b of Eq. (4) at drum velocity v (band brake: at drum displacement drum_in), kip.
+  double base_kip(double v_in_per_s, double drum_in = 0.0) const { return linear(v_in_per_s >= 0.0, v_in_per_s, drum_in).b; }
   /// Eq. (4) at positions x1, x2 and drum velocity v (with the model's floor), kip.
-  double kinetic_friction_kip(double x1_in, double x2_in, double v_in_per_s) const;
+  double kinetic_friction_kip(double x1_in, double x2_in, double v_in_per_s, double drum_in = 0.0) const;
   /// Load-cell force of the taut band's actuator for kinetic friction fc, lb.
-  double taut_actuator_force_lb(double fc_kip, bool forward) const;
+  double taut_actuator_force_lb(double fc_kip, bool forward, double drum_in = 0.0) const;
   /// The kinetic friction reachable at drum velocity v within stroke and force limits.
-  FrictionRange range(double v_in_per_s) const;
-  /// The inverse: targets for desired kinetic friction fc (kip, magnitude) at drum velocity v.
+  FrictionRange range(double v_in_per_s, double drum_in = 0.0) const;
+  /// The inverse: targets for desired kinetic friction fc (kip, magnitude) at drum velocity v
+  /// (and drum displacement drum_in, which only the band brake's wrap angle uses).
   /// Outside range(v) the targets saturate at the nearer bound (saturated = true).
-  ActuatorTargets targets(double fc_kip, double v_in_per_s) const;
+  ActuatorTargets targets(double fc_kip, double v_in_per_s, double drum_in = 0.0) const;
   /// passive_on: the fixed positions giving the largest friction that keeps both directions
   /// within stroke and force limits (at b of zero speed).
   const ActuatorTargets& strongest() const { return strongest_; }
   /// passive_off: x'_1, x'_2.
   ActuatorTargets initial() const;
   const damper::ElectricActuatorParams& actuators() const { return params_.electric_actuators; }
+  /// x'_1, x'_2 of the model (semi-active or band brake), in.
+  double rest1_in() const { return x1_rest_; }
+  double rest2_in() const { return x2_rest_; }
 
  private:
+  /// Eq. (4) of one direction as Fc = b + g1 dx1 + g2 dx2, with the taut-actuator factor
+  /// c_taut (kip of Fc per kip of taut-end load cell force) and the floor of Fc.
+  struct Linear {
+    double b = 0.0, gain[2] = {0.0, 0.0}, c_taut = 1.0, floor = 0.0;
+  };
+  Linear linear(bool forward, double v_in_per_s, double drum_in) const;
+
   damper::BrfdParams params_;
   damper::BrfdModel model_;
-  double gain_[2][2];          // [fwd, bwd][actuator 1, 2], kip/in
+  bool band_brake_ = false;
+  double x1_rest_ = 0.0, x2_rest_ = 0.0;
   double d_lo_ = 0.0, d_hi_ = 0.0;  // common displacement range from the stroke, in
   double fc_min_ = 0.0;
   ActuatorTargets strongest_;

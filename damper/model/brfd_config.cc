@@ -13,9 +13,12 @@ BrfdParams brfd_params_from_yaml(const common::YamlSection& s) {
   p.kind = damper_kind_from_string(
       s.get_choice("model", {"passive_lugre", "semiactive", "paper_semiactive", "band_brake"}));
   if (p.kind == DamperKind::band_brake) {
-    // The band-brake model (damper/model/band_brake_model.h): only its own block.
-    s.allow_only({"model", "band_brake"});
+    // The band-brake model (damper/model/band_brake_model.h): its own block and the electric
+    // actuators that set its slack-end tensions (B2).
+    s.allow_only({"model", "band_brake", "electric_actuators"});
     p.band_brake = band_brake_params_from_yaml(s.section("band_brake"));
+    if (s.has("electric_actuators"))
+      p.electric_actuators = electric_actuator_params_from_yaml(s.section("electric_actuators"));
     p.semiactive.actuator1_initial_in = p.band_brake.actuator1_initial_in;
     p.semiactive.actuator2_initial_in = p.band_brake.actuator2_initial_in;
     return p;
@@ -83,7 +86,9 @@ BrfdParams load_brfd_params(const std::string& path) {
 }
 
 std::string brfd_params_to_yaml(const BrfdParams& p) {
-  if (p.kind == DamperKind::band_brake) return band_brake_params_to_yaml(p.band_brake);
+  if (p.kind == DamperKind::band_brake)
+    return band_brake_params_to_yaml(p.band_brake) + "electric_actuators:\n" +
+           electric_actuator_params_to_yaml(p.electric_actuators);
   std::ostringstream o;
   common::use_shortest_round_trip(o);
   const LugreParams& g = p.lugre;

@@ -2,12 +2,16 @@
 // ordinary batch per law in OUT/<law>/, then one law x record table and plots.
 #include "server/batch/batch.h"
 
+#include "common/gnuplot.h"
+#include "common/number_format.h"
 #include "control/controller.h"
+#include "control/friction_inverse.h"
+#include "server/batch/batch_files.h"
 #include "server/run/run_config.h"
 
 #include <nlohmann/json.hpp>
 
-#include <cstdlib>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -43,11 +47,7 @@ double max_of(const json& j, const char* key) {
   return t;
 }
 
-std::string num(double v) {
-  std::ostringstream o;
-  o << std::setprecision(6) << v;
-  return o.str();
-}
+std::string num(double v) { return std::isfinite(v) ? common::format_shortest(v) : std::string("NaN"); }
 
 }  // namespace
 
@@ -59,8 +59,11 @@ int batch_laws_command(const BatchOptions& o) {
     if (laws.empty()) throw std::invalid_argument("--laws: give at least one law");
     for (const std::string& law : laws) control::law_from_string(law);
     base = load_run_config(o.config);
-    if (base.damper_model.kind != damper::DamperKind::semiactive)
-      throw std::invalid_argument(o.config + ": --laws needs the semi-active damper model (damper model: semiactive)");
+    try {
+      control::FrictionInverse check(base.damper_model, base.control.min_kinetic_friction_kip);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(o.config + ": --laws: the damper model cannot be controlled: " + e.what());
+    }
     records = load_record_set(o.records);
   } catch (const std::exception& e) {
     std::cerr << "hybridsim batch: " << e.what() << "\n";
@@ -90,10 +93,14 @@ int batch_laws_command(const BatchOptions& o) {
     rc = std::max(rc, r);
   }
 
-  // law x record table
+  // law x record table: the criteria of Ohtori et al. (2004) (J1-J3 peaks, their RMS
+  // counterparts), peak drift, peak damper force, dissipated energy and actuator effort, all in
+  // full (round-trip) precision so that a row can be compared with a plain run's summary.json.
   std::ostringstream csv;
-  csv << "law,record,status,J1_peak_drift_ratio,J2_peak_floor_accel,J3_peak_base_shear,J1_rms,J2_rms,J3_rms,"
-         "peak_drift_in,peak_damper_force_kip,damper_energy_kip_in,actuator_travel_in\n";
+  csv << "law,record,status,J1_peak_drift_ratio,J2_peak_floor_accel,J3_peak_base_shear,J1_rms_drift_ratio,"
+         "J2_rms_floor_accel,J3_rms_base_shear,peak_drift_in,peak_floor_accel_g,peak_damper_force_kip,"
+         "damper_energy_kip_in,input_energy_kip_in,actuator_travel_in,actuator_peak_speed_in_per_s,"
+         "controller_us_per_step\n";
   const fs::path plots = fs::path(o.out) / "plots";
   fs::create_directories(plots);
   std::map<std::string, std::map<std::string, json>> s;  // law -> label -> summary
@@ -105,6 +112,7 @@ int batch_laws_command(const BatchOptions& o) {
         try {
           std::ifstream(p) >> j;
         } catch (const std::exception&) {
+          j = json();
         }
       }
       s[law][r.label] = j;
@@ -112,19 +120,25 @@ int batch_laws_command(const BatchOptions& o) {
       csv << law << "," << r.label << "," << status;
       if (status == "ok" && j.contains("criteria")) {
         const json& c = j["criteria"];
-        csv << "," << num(c["J1_peak_drift_ratio"].get<double>()) << "," << num(c["J2_peak_floor_accel"].get<double>())
-            << "," << num(c["J3_peak_base_shear"].get<double>()) << "," << num(c["J1_rms_drift_ratio"].get<double>())
-            << "," << num(c["J2_rms_floor_accel"].get<double>()) << "," << num(c["J3_rms_base_shear"].get<double>()) << ","
-            << num(max_of(j, "peak_drift_in")) << "," << num(max_of(j, "peak_damper_force_kip")) << ","
-            << num(sum_of(j, "damper_energy_kip_in")) << ","
-            << num(j.contains("control") ? sum_of(j["control"], "actuator_travel_in") : 0.0) << "\n";
+        const json ctl = j.contains("control") ? j["control"] : json::object();
+        const double input = j.contains("energy_kip_in") && j["energy_kip_in"].contains("input")
+                                 ? j["energy_kip_in"]["input"].get<double>()
+                                 : std::nan("");
+        for (const char* k : {"J1_peak_drift_ratio", "J2_peak_floor_accel", "J3_peak_base_shear", "J1_rms_drift_ratio",
+                              "J2_rms_floor_accel", "J3_rms_base_shear"})
+          csv << "," << num(c[k].get<double>());
+        csv << "," << num(max_of(j, "peak_drift_in")) << "," << num(max_of(j, "peak_floor_accel_g")) << ","
+            << num(max_of(j, "peak_damper_force_kip")) << "," << num(sum_of(j, "damper_energy_kip_in")) << ","
+            << num(input) << "," << num(sum_of(ctl, "actuator_travel_in")) << ","
+            << num(max_of(ctl, "actuator_peak_speed_in_per_s")) << ","
+            << num(ctl.contains("controller_us_per_step") ? ctl["controller_us_per_step"].get<double>() : 0.0) << "\n";
       } else {
-        csv << ",,,,,,,,,,\n";
+        csv << ",,,,,,,,,,,,,,\n";
       }
     }
-  std::ofstream(fs::path(o.out) / "laws-summary.csv") << csv.str();
+  batch_internal::write_file_atomic(fs::path(o.out) / "laws-summary.csv", csv.str());
 
-  // Plots: criteria per law (one cluster per record), drift envelopes per record with the laws.
+  // Plots: criteria per law (one bar per record), drift envelopes per record with the laws.
   std::ofstream crit(plots / "criteria.dat");
   crit << "# law";
   for (const BatchRecord& r : records) crit << " " << r.label << "_J1 " << r.label << "_J2 " << r.label << "_J3";
@@ -144,13 +158,15 @@ int batch_laws_command(const BatchOptions& o) {
      << "set terminal pngcairo size 1100,650 noenhanced\nset grid ytics\nset key outside right\n"
      << "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set xtics rotate by -20\nset yrange [0:*]\n";
+  std::string record_words;
+  for (const BatchRecord& r : records) record_words += (record_words.empty() ? "" : " ") + r.label;
   const char* names[] = {"J1 peak drift ratio", "J2 peak floor acceleration", "J3 peak base shear"};
   for (int k = 0; k < 3; ++k) {
     gp << "set output '../criteria-J" << k + 1 << ".png'\n"
        << "set title '" << names[k] << " relative to the building without dampers: " << base.name << "'\n"
        << "set ylabel 'J" << k + 1 << "'\n"
-       << "plot for [r=0:" << records.size() - 1 << "] 'criteria.dat' using " << 2 + k << "+3*r:xtic(1) title columnhead("
-       << 2 + k << "+3*r)\n";
+       << "plot for [r=0:" << records.size() - 1 << "] 'criteria.dat' using " << 2 + k
+       << "+3*r:xtic(1) title word('" << record_words << "', r+1)\n";
   }
   const int stories = static_cast<int>(base.building.story_mass_kip_s2_per_in.size());
   gp << "set style data linespoints\nunset style\nset xtics norotate\nset xtics auto\nset grid\n";
@@ -182,9 +198,8 @@ int batch_laws_command(const BatchOptions& o) {
     gp << "', l)\n";
   }
   gp.close();
-  const std::string cmd = "cd '" + plots.string() + "' && gnuplot laws.gp > gnuplot.log 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    std::cerr << "hybridsim batch: warning: gnuplot failed: see " << (plots / "gnuplot.log").string() << "\n";
+  const std::string warning = common::run_gnuplot("laws.gp", plots.string(), (plots / "gnuplot.log").string());
+  if (!warning.empty()) std::cerr << "hybridsim batch: warning: " << warning << "\n";
   if (!o.quiet) {
     std::cout << "\nlaw x record (J1 peak drift ratio / J2 peak accel / J3 base shear, vs. no damper):\n";
     std::cout << std::left << std::setw(22) << "law";
