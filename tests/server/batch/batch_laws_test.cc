@@ -175,9 +175,9 @@ TEST(BatchLaws, TableRowsPerLawAndRecordPassiveOffIsThePlainRunActuatorsWithinLi
   EXPECT_GT(fastest_lyapunov, 0.99 * lim.velocity_limit_in_per_s);
 
   if (fs::exists("/usr/bin/gnuplot")) {
-    for (const std::string& png : {"criteria-J1.png", "criteria-J2.png", "criteria-J3.png", "drift-envelope-ElCentro.png",
+    for (const char* png : {"criteria-J1.png", "criteria-J2.png", "criteria-J3.png", "drift-envelope-ElCentro.png",
                                    "drift-envelope-Sylmar.png"})
-      EXPECT_GT(fs::file_size(dir + "/laws/" + png), 2000u) << png;
+      EXPECT_GT(fs::file_size(dir + "/laws/" + std::string(png)), 2000u) << png;
   } else {
     std::cout << "gnuplot not installed: plots not checked\n";
   }
