@@ -100,8 +100,9 @@ RunConfig load_run_config(const std::string& path) {
 
   if (top.has("control")) {
     c.control = control::control_config_from_yaml(top.section("control"));
-    if (c.damper_model.kind != damper::DamperKind::semiactive)
-      top.section("control").fail("law", "semi-active control needs the damper model `model: semiactive`");
+    if (c.damper_model.kind == damper::DamperKind::passive_lugre)
+      top.section("control").fail("law", "control needs a damper model with electric actuators (`model: semiactive` or "
+                                         "`model: band_brake`), not passive_lugre");
     if (c.building.dampers.empty()) top.section("control").fail("law", "the building has no dampers to control");
     try {
       control::FrictionInverse check(c.damper_model, c.control.min_kinetic_friction_kip);

@@ -4,6 +4,7 @@
 // lowers J1 below both passive laws on at least 3 of 4 records (3-story); the electric
 // actuators never leave their stroke nor exceed their velocity limit (from the time histories).
 #include "control/friction_inverse.h"
+#include "damper/model/brfd_config.h"
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
 #include "test_paths.h"
@@ -195,6 +196,50 @@ TEST(ControlLoop, ClippedOptimalLowersPeakDriftOnTheThreeStoryBuilding) {
   EXPECT_GE(below_both, 2);
   EXPECT_GE(below_off, 3);
   EXPECT_EQ(below_worse, 4);
+}
+
+}  // namespace
+
+namespace {
+
+// The band-brake model (the runs' default damper, damper/model/band_brake_model.h) under
+// control: its actuators set the slack-end tension (B2); the inverse of (B1)-(B3) gives the
+// targets (control/friction_inverse.h).
+TEST(ControlLoop, BandBrakeModelPassiveOffIsThePlainRunAndLyapunovSwitchesAtEveryStep) {
+  const damper::BrfdParams bb = damper::load_brfd_params(test_paths::source_dir() + "/configs/brfd-band-brake.yaml");
+  ASSERT_EQ(bb.kind, damper::DamperKind::band_brake);
+  auto with_band_brake = [&](RunConfig c) {
+    c.damper_model = bb;
+    return c;
+  };
+  const RunConfig plain = with_band_brake(config("three-story-controlled.yaml", kRecords[3], "", 8.0, test_support::fresh_temp_dir("bbp")));
+  const RunConfig off =
+      with_band_brake(config("three-story-controlled.yaml", kRecords[3], "passive_off", 8.0, test_support::fresh_temp_dir("bbo")));
+  const RunConfig lya =
+      with_band_brake(config("three-story-controlled.yaml", kRecords[3], "lyapunov", 8.0, test_support::fresh_temp_dir("bbl")));
+  const server::RunSummary a = run(plain), b = run(off), l = run(lya);
+  const Csv ha = read_csv(plain.output.dir + "/time_history.csv"), hb = read_csv(off.output.dir + "/time_history.csv");
+  ASSERT_EQ(ha.rows.size(), hb.rows.size());
+  for (std::size_t r = 0; r < ha.rows.size(); ++r)
+    for (std::size_t j = 0; j < ha.header.size(); ++j) ASSERT_EQ(ha.rows[r][j], hb.rows[r][j]) << "row " << r;
+  EXPECT_EQ(a.damper_energy_kip_in, b.damper_energy_kip_in);
+  expect_actuators_within_limits(lya, "band brake lyapunov");
+  EXPECT_GT(l.actuator_travel_in.sum(), 0.1);
+
+  const Csv h = read_csv(lya.output.dir + "/time_history.csv");
+  const control::FrictionInverse inv(bb, lya.control.min_kinetic_friction_kip);
+  const int drum = h.col("damper1_drum_disp_in"), force = h.col("damper1_force_kip"), fc = h.col("damper1_desired_fc_kip");
+  long on = 0;
+  for (std::size_t r = 2; r < h.rows.size(); ++r) {
+    const double d = h.rows[r][drum], v = (d - h.rows[r - 1][drum]) / lya.dt_s;
+    const control::FrictionRange range = inv.range(v, d);
+    const bool dissipating = h.rows[r - 1][force] * v >= 0.0;
+    ASSERT_NEAR(h.rows[r][fc], dissipating ? range.max_kip : range.min_kip, 1e-9) << "row " << r;
+    on += dissipating;
+  }
+  // Both branches are taken (the band's stored force opposes the motion after each reversal).
+  EXPECT_GT(on, 100);
+  EXPECT_LT(on, static_cast<long>(h.rows.size()) - 100);
 }
 
 }  // namespace

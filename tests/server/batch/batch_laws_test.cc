@@ -5,6 +5,7 @@
 // the whole batch the electric actuators never leave their stroke nor exceed their velocity
 // limit (asserted from every run's time history, not from the summaries).
 #include "run_process.h"
+#include "damper/model/brfd_config.h"
 #include "server/run/run_config.h"
 #include "test_paths.h"
 
@@ -181,6 +182,32 @@ TEST(BatchLaws, TableRowsPerLawAndRecordPassiveOffIsThePlainRunActuatorsWithinLi
   } else {
     std::cout << "gnuplot not installed: plots not checked\n";
   }
+}
+
+TEST(BatchLaws, RunsTheBandBrakeModelAndRefusesAPassiveDamperNamingIt) {
+  const std::string dir = test_support::fresh_temp_dir("batch-laws-bb");
+  test_support::write_text(dir + "/records.txt", test_paths::source_dir() +
+                                                     "/records/Kocaeli1999_Duzce_270_RSN1158.AT2 1.0 Duzce\n");
+  server::RunConfig c = server::load_run_config(test_paths::source_dir() + "/configs/three-story-controlled.yaml");
+  c.damper_model = damper::load_brfd_params(test_paths::source_dir() + "/configs/brfd-band-brake.yaml");
+  test_support::write_text(dir + "/band-brake.yaml", server::run_config_to_yaml(c));
+  const auto r = hybridsim({"batch", "--config", dir + "/band-brake.yaml", "--records", dir + "/records.txt", "--out",
+                            dir + "/bb", "--laws", "passive_off,lyapunov", "--duration", "3", "--transport", "in_process",
+                            "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const Table t = read_csv(dir + "/bb/laws-summary.csv");
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[1][t.col("status")], "ok");
+  EXPECT_GT(std::stod(t.rows[1][t.col("actuator_travel_in")]), 0.0);
+
+  c.damper_model = damper::load_brfd_params(test_paths::source_dir() + "/configs/brfd-default.yaml");
+  ASSERT_EQ(c.damper_model.kind, damper::DamperKind::passive_lugre);
+  test_support::write_text(dir + "/passive.yaml", server::run_config_to_yaml(c));
+  const auto p = hybridsim({"batch", "--config", dir + "/passive.yaml", "--records", dir + "/records.txt", "--out",
+                            dir + "/p", "--laws", "passive_off", "--duration", "3", "--transport", "in_process"});
+  EXPECT_EQ(p.exit_code, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("passive.yaml"), std::string::npos) << p.err;
+  EXPECT_NE(p.err.find("passive_lugre"), std::string::npos) << p.err;
 }
 
 }  // namespace
