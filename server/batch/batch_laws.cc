@@ -155,7 +155,7 @@ int batch_laws_command(const BatchOptions& o) {
   crit.close();
   std::ofstream gp(plots / "laws.gp");
   gp << "# gnuplot script written by hybridsim batch --laws; run from " << plots.string() << "\n"
-     << "set terminal pngcairo size 1100,650 noenhanced\nset grid ytics\nset key outside right\n"
+     << "set terminal pngcairo size 900,540 noenhanced font ',10'\nset grid ytics\nset key outside right\n"
      << "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set xtics rotate by -20\nset yrange [0:*]\n";
   std::string record_words;
