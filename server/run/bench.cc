@@ -6,6 +6,7 @@
 #include "server/run/substructure_session.h"
 #include "common/process.h"
 #include "damper/model/band_brake_model.h"
+#include "damper/model/brfd_config.h"
 #include "damper/model/brfd_model.h"
 
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <utility>
 #include <vector>
 
 namespace server {
@@ -114,12 +116,18 @@ void bench_controller(const std::string& ten_story_config) {
   const structure::ShearBuilding b(c.building);
   const control::BuildingMatrices m{b.mass(), b.damping(), b.stiffness(), b.damper_gamma()};
   const int n = b.num_stories(), nd = b.num_dampers();
+  // The config's damper model (semi-active, Eq. 4) and the runs' band-brake model (its inverse
+  // evaluates the capstan ratio at the drum displacement every step).
+  std::vector<std::pair<std::string, damper::BrfdParams>> models{{damper::to_string(c.damper_model.kind), c.damper_model}};
+  const std::string band_brake = (fs::path(ten_story_config).parent_path() / "brfd-band-brake.yaml").string();
+  if (fs::exists(band_brake)) models.emplace_back("band_brake", damper::load_brfd_params(band_brake));
+  for (const auto& [model_name, model] : models)
   for (control::Law law : {control::Law::passive_on, control::Law::lyapunov, control::Law::clipped_optimal,
                            control::Law::modulated_homogeneous}) {
     control::ControlConfig cc = c.control;
     cc.enabled = true;
     cc.law = law;
-    control::Controller ctl(cc, m, c.damper_model, c.dt_s);
+    control::Controller ctl(cc, m, model, c.dt_s);
     Eigen::VectorXd accel(n), drift(n), force(nd), drum(nd);
     Eigen::MatrixX2d targets(nd, 2);
     const control::Measurements meas{&accel, &drift, &force, &drum};
@@ -140,9 +148,9 @@ void bench_controller(const std::string& ten_story_config) {
       sink += targets(0, 0);
     }
     const double us = 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / steps;
-    std::printf("controller %s, %d stories / %d dampers: %.3f us per step (target <= 5 us; allocation-free: "
-                "control_tests ControllerAllocations)%s\n",
-                control::to_string(law).c_str(), n, nd, us, sink == 12345.678 ? " " : "");
+    std::printf("controller %s, %s damper, %d stories / %d dampers: %.3f us per step (target <= 5 us; "
+                "allocation-free: control_tests ControllerAllocations)%s\n",
+                control::to_string(law).c_str(), model_name.c_str(), n, nd, us, sink == 12345.678 ? " " : "");
   }
 }
 

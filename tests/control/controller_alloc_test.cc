@@ -37,8 +37,12 @@ TEST(ControllerAllocations, ComputeIsAllocationFreeForEveryLaw) {
     b.gamma(k, k) = 1.0;
     if (k > 0) b.gamma(k - 1, k) = -1.0;
   }
-  damper::BrfdParams p;
-  p.kind = damper::DamperKind::semiactive;
+  damper::BrfdParams semiactive;
+  semiactive.kind = damper::DamperKind::semiactive;
+  damper::BrfdParams band_brake;  // the band-brake model's inverse (capstan ratio at the drum)
+  band_brake.kind = damper::DamperKind::band_brake;
+  band_brake.band_brake.actuator_tension_kip_per_in = {0.25, 0.23, 0.48, 0.48};
+  for (const damper::BrfdParams& p : {semiactive, band_brake})
   for (control::Law law : {control::Law::passive_off, control::Law::passive_on, control::Law::lyapunov,
                            control::Law::clipped_optimal, control::Law::modulated_homogeneous}) {
     control::ControlConfig c;
@@ -61,7 +65,7 @@ TEST(ControllerAllocations, ComputeIsAllocationFreeForEveryLaw) {
       force.setConstant(2.0 * std::cos(6.0 * t));
       ctl.compute(m, targets);
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << control::to_string(law);
+    EXPECT_EQ(g_allocations.load() - before, 0) << control::to_string(law) << " " << damper::to_string(p.kind);
     EXPECT_TRUE(targets.allFinite());
   }
 }
