@@ -24,6 +24,8 @@ CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
   minv_damping_ = sparse_rows(mass_llt_.solve(building.damping()));
   minv_stiffness_ = sparse_rows(mass_llt_.solve(building.stiffness()));
   minv_gamma_ = sparse_rows(mass_llt_.solve(building.damper_gamma()));
+  minv_damping_band_ = tridiagonal(minv_damping_);
+  minv_stiffness_band_ = tridiagonal(minv_stiffness_);
   const int n = building.num_stories();
   x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = rhs_ = Eigen::VectorXd::Zero(n);
 }
@@ -77,8 +79,8 @@ void CrIntegrator::complete(double ground_accel_in_per_s2, const Eigen::VectorXd
   const double* iota = building_.influence().data();
   for (int i = 0; i < a_.size(); ++i) {
     double c_v = 0.0, k_x = 0.0, g_f = 0.0;
-    c_v = row_dot(minv_damping_, i, v);
-    k_x = row_dot(minv_stiffness_, i, x);
+    c_v = minv_damping_band_.valid ? tri_dot(minv_damping_band_, i, v) : row_dot(minv_damping_, i, v);
+    k_x = minv_stiffness_band_.valid ? tri_dot(minv_stiffness_band_, i, x) : row_dot(minv_stiffness_, i, x);
     g_f = row_dot(minv_gamma_, i, f);
     a_[i] = ((-ground_accel_in_per_s2 * iota[i] - c_v) - k_x) - g_f;
   }

@@ -82,6 +82,7 @@ class CrIntegrator final : public Integrator {
   // M⁻¹C, M⁻¹K, M⁻¹Γ, stored sparse: a shear building's M is diagonal and K, C are
   // tridiagonal, so these products skip the (exact) zeros of the dense matrices.
   SparseRows minv_damping_, minv_stiffness_, minv_gamma_;
+  Tridiagonal minv_damping_band_, minv_stiffness_band_;  // the same, as diagonals (valid for a shear building)
   Eigen::VectorXd x_, v_, a_, x_next_, v_next_, alpha_a_, rhs_;
   long step_ = 0;
   bool initialized_ = false;

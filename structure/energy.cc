@@ -26,6 +26,9 @@ EnergyLedger::EnergyLedger(const ShearBuilding& building, EnergyDefinition defin
       stiffness_(sparse_rows(building.stiffness())),
       damping_matrix_(sparse_rows(building.damping())),
       gamma_t_(sparse_rows(building.damper_gamma().transpose())),
+      mass_band_(tridiagonal(mass_)),
+      stiffness_band_(tridiagonal(stiffness_)),
+      damping_band_(tridiagonal(damping_matrix_)),
       work_(building.num_stories()),
       work2_(building.num_stories()),
       drum_vel_(building.num_dampers()),
@@ -143,9 +146,9 @@ void EnergyLedger::add_centred(double dt, const Eigen::VectorXd& x_next, double 
   double residual_power = 0.0;
   for (int i = 0; i < n; ++i) {
     double m_d2 = 0.0, k_mean = 0.0, c_u = 0.0;
-    m_d2 = row_dot(mass_, i, d2);
-    k_mean = row_dot(stiffness_, i, mean);
-    c_u = row_dot(damping_matrix_, i, u);
+    m_d2 = mass_band_.valid ? tri_dot(mass_band_, i, d2) : row_dot(mass_, i, d2);
+    k_mean = stiffness_band_.valid ? tri_dot(stiffness_band_, i, mean) : row_dot(stiffness_, i, mean);
+    c_u = damping_band_.valid ? tri_dot(damping_band_, i, u) : row_dot(damping_matrix_, i, u);
     p.input -= u[i] * mass_iota_[i];
     p.damping += u[i] * c_u;
     residual_power += u[i] * (m_d2 + k_mean);

@@ -86,6 +86,7 @@ class EnergyLedger {
   Eigen::VectorXd mass_iota_;                 // M·ι, precomputed
   // M (diagonal), K and C (tridiagonal), Γᵀ stored sparse: the products skip exact zeros.
   SparseRows mass_, stiffness_, damping_matrix_, gamma_t_;
+  Tridiagonal mass_band_, stiffness_band_, damping_band_;  // the same, as diagonals (valid for a shear building)
   mutable Eigen::VectorXd work_, work2_, drum_vel_;  // scratch: add_step allocates nothing
   Eigen::VectorXd last_x_, last_v_;           // stored energies are computed on demand from these
   bool started_ = false;

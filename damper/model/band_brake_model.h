@@ -78,6 +78,9 @@ class BandBrakeModel final : public DamperModel {
 
   /// (B1)-(B3) at an input.
   BandTensions tensions(const BandBrakeInput& in) const;
+  /// Kinetic friction F_c of one sliding direction (forward: drum velocity > 0), equal to
+  /// tensions(in).fc_fwd_kip / fc_bwd_kip (Eqs. B1-B3), computing only that direction.
+  double kinetic_friction_kip(const BandBrakeInput& in, bool forward) const;
   /// Capstan ratio E = exp(μθ) (B1).
   static double capstan_ratio(double friction_coefficient, double wrap_angle_rad);
   /// Band spring force S(s) (B4), kip.

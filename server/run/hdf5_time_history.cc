@@ -56,6 +56,8 @@ Hdf5TimeHistory::Hdf5TimeHistory(const std::string& path, const std::vector<std:
   const hid_t group = H5Gcreate2(file_, "time_history", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   ok = ok && group >= 0;
   const hsize_t chunk = std::clamp<hsize_t>(static_cast<hsize_t>(std::max(1L, expected_rows)), 64, kChunkRows);
+  chunk_rows_ = chunk;
+  buffer_.assign(static_cast<std::size_t>(chunk) * columns.size(), 0.0);  // one chunk per column, before the run
   const hsize_t dims0 = 0, maxdims = H5S_UNLIMITED;
   for (std::size_t i = 0; ok && i < columns.size(); ++i) {
     const hid_t space = H5Screate_simple(1, &dims0, &maxdims);
@@ -91,34 +93,62 @@ Hdf5TimeHistory::~Hdf5TimeHistory() {
 
 void Hdf5TimeHistory::write_rows(const double* values, std::size_t rows) {
   if (file_ < 0) throw std::runtime_error("HDF5 file " + path_ + " is closed");
-  if (rows == 0) return;
+  // Rows are gathered column by column into one chunk's worth (chunk_rows_ rows per column)
+  // and each column is written once per chunk: one H5Dwrite of a whole, aligned chunk per
+  // column instead of one per 1024-row block, and the file flushed when the chunk is
+  // complete (flushing every block rewrote the same partly filled 64 KB chunks up to 8 times:
+  // 10-story, about 48 MB through the page cache for a 7.6 MB file). close() writes the rest,
+  // also for a run that fails.
   const std::size_t ncol = datasets_.size();
-  column_.resize(rows);
-  const hsize_t start = rows_, count = rows, new_size = rows_ + rows;
+  while (rows > 0) {
+    const std::size_t take = std::min<std::size_t>(rows, chunk_rows_ - buffered_);
+    for (std::size_t c = 0; c < ncol; ++c) {
+      double* column = buffer_.data() + c * chunk_rows_ + buffered_;
+      for (std::size_t r = 0; r < take; ++r) column[r] = values[r * ncol + c];
+    }
+    buffered_ += take;
+    values += take * ncol;
+    rows -= take;
+    if (buffered_ == chunk_rows_) write_buffer(true);
+  }
+}
+
+void Hdf5TimeHistory::write_buffer(bool flush) {
+  if (buffered_ == 0) return;
+  const std::size_t ncol = datasets_.size();
+  const hsize_t start = rows_, count = buffered_, new_size = rows_ + buffered_;
   const hid_t memspace = H5Screate_simple(1, &count, nullptr);
   bool ok = memspace >= 0;
   for (std::size_t c = 0; ok && c < ncol; ++c) {
-    for (std::size_t r = 0; r < rows; ++r) column_[r] = values[r * ncol + c];
     ok = H5Dset_extent(datasets_[c], &new_size) >= 0;
     const hid_t filespace = ok ? H5Dget_space(datasets_[c]) : -1;
     ok = ok && filespace >= 0 && H5Sselect_hyperslab(filespace, H5S_SELECT_SET, &start, nullptr, &count, nullptr) >= 0 &&
-         H5Dwrite(datasets_[c], H5T_NATIVE_DOUBLE, memspace, filespace, H5P_DEFAULT, column_.data()) >= 0;
+         H5Dwrite(datasets_[c], H5T_NATIVE_DOUBLE, memspace, filespace, H5P_DEFAULT,
+                  buffer_.data() + c * chunk_rows_) >= 0;
     if (filespace >= 0) H5Sclose(filespace);
   }
   if (memspace >= 0) H5Sclose(memspace);
-  ok = ok && H5Fflush(file_, H5F_SCOPE_LOCAL) >= 0;
+  if (ok && flush) ok = H5Fflush(file_, H5F_SCOPE_LOCAL) >= 0;
   if (!ok) throw std::runtime_error("write failed on " + path_);
   rows_ = new_size;
+  buffered_ = 0;
 }
 
 void Hdf5TimeHistory::close() {
   if (file_ < 0) return;
   bool ok = true;
+  std::string error;
+  try {
+    write_buffer(false);
+  } catch (const std::exception& e) {
+    ok = false;
+    error = e.what();
+  }
   for (hid_t ds : datasets_) ok = H5Dclose(ds) >= 0 && ok;
   datasets_.clear();
   ok = H5Fclose(file_) >= 0 && ok;
   file_ = -1;
-  if (!ok) throw std::runtime_error("cannot close HDF5 file " + path_);
+  if (!ok) throw std::runtime_error(error.empty() ? "cannot close HDF5 file " + path_ : error);
 }
 
 }  // namespace server

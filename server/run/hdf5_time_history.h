@@ -18,9 +18,10 @@
 /// Reading: h5py `f["time_history/time_s"][:]`; pandas
 /// `pd.DataFrame({k: v[:] for k, v in h5py.File(p)["time_history"].items()})`; MATLAB
 /// `h5read(p, "/time_history/time_s")`; `h5dump -d /time_history/time_s p` (hdf5-tools).
-/// Rows are flushed to the file (H5Fflush) with every block, so a run that fails keeps its
-/// rows up to the last completed block (a process killed mid-write may leave the file
-/// unreadable: the CSV is the format for crash-safe logging).
+/// Rows are flushed to the file (H5Fflush) with every completed chunk (8192 rows: 8 s at
+/// 1024 Hz) and at close, so a run that fails keeps every row it computed (close writes them);
+/// a process killed mid-write may leave the file unreadable: the CSV is the format for
+/// crash-safe logging.
 
 #include "server/run/time_history_sink.h"
 
@@ -50,8 +51,12 @@ class Hdf5TimeHistory : public TimeHistorySink {
   std::string path_;
   std::int64_t file_ = -1;
   std::vector<std::int64_t> datasets_;
-  std::vector<double> column_;  // one column of a block
-  unsigned long long rows_ = 0;
+  /// Writes the buffered rows (each column's part of buffer_) and, if `flush`, H5Fflush.
+  void write_buffer(bool flush);
+  std::vector<double> buffer_;  // chunk_rows_ values per column, column after column
+  std::size_t buffered_ = 0;    // rows in buffer_
+  unsigned long long rows_ = 0; // rows in the file
+  std::size_t chunk_rows_ = 1;  // rows per chunk: written and flushed when one is complete
 };
 
 }  // namespace server

@@ -239,6 +239,7 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
     abs_accel_g = abs_accel_in_s2 / kGravity_in_per_s2;
     write_row(0.0, ag);
     if (response) record_history(0.0);
+    long rows_until_output = config.output.every_n_steps, steps_until_flush = config.output.flush_every_steps;
     for (long i = 0; i < num_steps; ++i) {
       common::throw_if_interrupted();  // SIGINT/SIGTERM: stop here, rows so far are kept
       const double t_next = (i + 1) * dt;
@@ -299,11 +300,18 @@ RunSummary run_hybrid(const RunConfig& config, Substructure& substructure, const
       }
       for (int k = 0; k < nd; ++k) s.peak_force_kip[k] = std::max(s.peak_force_kip[k], std::abs(force[k]));
       stats.add(drift, abs_accel_in_s2);
-      if ((i + 1) % config.output.every_n_steps == 0) write_row(t_next, ag);
+      // Countdowns instead of (i + 1) % n: two 64-bit divisions per step were measurable.
+      if (--rows_until_output == 0) {
+        write_row(t_next, ag);
+        rows_until_output = config.output.every_n_steps;
+      }
       if (response) record_history(t_next);
       s.steps = i + 1;
       s.sim_time_s = t_next;
-      if ((i + 1) % config.output.flush_every_steps == 0) history.hand_over();
+      if (--steps_until_flush == 0) {
+        history.hand_over();
+        steps_until_flush = config.output.flush_every_steps;
+      }
     }
     substructure.stop(false, "record finished");
   } catch (const common::Interrupted& e) {
