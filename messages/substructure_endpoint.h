@@ -11,14 +11,24 @@
 ///  - replies: one force_feedback_t per step; a repeated command is answered again with the
 ///    same reply, without stepping twice.
 /// The endpoint decides nothing about the run: it calls the node (Listener) for every START,
-/// STOP, ABORT and drift command of its run, and publishes what the node asks. Every publish
-/// goes through publish_message (return codes checked); undecodable messages are reported
-/// on stderr naming channel and type, and dropped.
+/// STOP, ABORT and drift command of its run, and publishes what the node asks.
+///
+/// Authentication (messages/message_auth.h): every message it publishes is signed under the
+/// run key with its own increasing sequence; a reply carries the step and the sequence of the
+/// command it answers (command_sequence). A received run control or drift command reaches the
+/// node only when it decodes, belongs to the run, carries a valid HMAC and a sequence above
+/// the last accepted one of its channel; anything else is counted in bad_messages() (kinds
+/// "RUN_CONTROL/bad_mac" etc.), said once per kind on stderr and dropped. Under policy stop
+/// the next drift command is answered with a FAULT naming the first bad message (the server
+/// then aborts the run; a physical node ramps to its safe state as on any abort).
 
 #include "hybrid_lcm/drift_command_t.hpp"
 #include "hybrid_lcm/force_feedback_t.hpp"
 #include "hybrid_lcm/heartbeat_t.hpp"
 #include "hybrid_lcm/run_control_t.hpp"
+#include "messages/bad_message_log.h"
+#include "messages/message_auth.h"
+#include "messages/run_key.h"
 #include "messages/transport.h"
 
 #include <string>
@@ -31,6 +41,8 @@ struct EndpointSettings {
   std::string run_id;                   ///< answer only this run ("" = adopt the first START)
   std::string sender = "brfd-substructure";
   double heartbeat_period_s = 0.2;
+  RunKey key{};                         ///< the run key (run_key.h): signs and verifies everything
+  BadMessagePolicy on_bad_message = BadMessagePolicy::drop;
 };
 
 class SubstructureEndpoint {
@@ -79,9 +91,21 @@ class SubstructureEndpoint {
   bool answer_repeat(int64_t step);
   int64_t last_answered_step() const { return last_answered_step_; }
 
+  /// Bad messages received so far, by kind.
+  const BadMessageLog& bad_messages() const { return bad_; }
+  /// Counts a bad message of a channel the node reads itself (sensor frames).
+  BadMessageLog& bad_message_log() { return bad_; }
+  /// The run key's signer/verifier (the node's other links use the same key).
+  const MessageAuth& auth() const { return auth_; }
+
  private:
   void on_control(hybrid_lcm::run_control_t& msg);
   void on_drift(hybrid_lcm::drift_command_t& cmd);
+  /// Authentication and replay checks of a decoded run control / drift command; false (and
+  /// counted) when it must be dropped. `last_sequence` is the channel's last accepted one.
+  template <class T>
+  bool accept(const char* channel, const RawMessage& raw, T& msg, int64_t& last_sequence);
+  void publish_reply();
 
   LcmInterface& lcm_;
   EndpointSettings s_;
@@ -92,6 +116,12 @@ class SubstructureEndpoint {
   hybrid_lcm::force_feedback_t feedback_;
   hybrid_lcm::heartbeat_t heartbeat_;
   std::vector<uint8_t> buffer_;
+  MessageAuth auth_;
+  BadMessageLog bad_;
+  int64_t sequence_ = 0;                 ///< of the messages this endpoint publishes
+  int64_t last_control_sequence_ = 0;    ///< last accepted run control's
+  int64_t last_drift_sequence_ = 0;      ///< last accepted drift command's
+  int64_t last_drift_step_ = -1;         ///< step of the last accepted drift command
   TimePoint next_heartbeat_{};
   TimePoint last_command_{};
   int64_t last_answered_step_ = -1;

@@ -153,7 +153,12 @@ void publish_message(LcmInterface& lcm, const std::string& channel, const T& msg
 /// the type (hash mismatch, truncated, or trailing bytes).
 template <class T>
 void decode_message(const RawMessage& m, T& msg) {
-  const int used = msg.decode(m.data, 0, static_cast<int>(m.size));
+  int used = -1;
+  try {
+    used = msg.decode(m.data, 0, static_cast<int>(m.size));
+  } catch (const std::exception&) {  // lcm-gen code: a negative string length, an impossible array
+    used = -1;
+  }
   if (used < 0 || static_cast<std::size_t>(used) != m.size) {
     throw DecodeError("LCM channel '" + m.channel + "': cannot decode a " + T::getTypeName() + " (" +
                       std::to_string(m.size) +

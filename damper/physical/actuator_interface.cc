@@ -8,20 +8,14 @@ namespace damper::physical {
 
 ActuatorInterface::ActuatorInterface(messages::LcmInterface& lcm, const messages::Channels& channels, const RunKey& key,
                                      SafetyLayer& safety)
-    : lcm_(lcm), channels_(channels), signer_(key), safety_(safety) {
+    : lcm_(lcm), channels_(channels), signer_(key), frame_auth_(key), safety_(safety) {
   command_.hmac.reserve(32);
   command_.run_id.reserve(128);
   frame_.run_id.reserve(128);
   frame_.last_rejection.reserve(256);
   scratch_ = frame_;
   buffer_.reserve(512);
-  messages::subscribe_message<hybrid_lcm::sensor_frame_t>(
-      lcm_, channels_.sensor_frame(), scratch_, [this](hybrid_lcm::sensor_frame_t&, const messages::RawMessage&) { on_frame(); },
-      [this](const messages::DecodeError& e, const messages::RawMessage&) {
-        if (bad_frames_++ < 5) {
-          std::cerr << "brfd-substructure: " << e.what() << "\n";
-        }
-      });
+  lcm_.subscribe(channels_.sensor_frame(), [this](const messages::RawMessage& raw) { on_frame(raw); });
 }
 
 void ActuatorInterface::set_run_id(const std::string& run_id) { command_.run_id = run_id; }
@@ -46,13 +40,34 @@ bool ActuatorInterface::send(const ActuatorSetpoint& sp, int8_t mode, std::strin
   return true;
 }
 
-void ActuatorInterface::on_frame() {
-  // Frames of another run are ignored; so are frames without a run id (a controller that has
-  // not accepted any command yet) once our controller has answered with our run id.
-  if (!command_.run_id.empty()) {
-    if (scratch_.run_id == command_.run_id) bound_ = true;
-    else if (!scratch_.run_id.empty() || bound_) return;
+void ActuatorInterface::on_frame(const messages::RawMessage& raw) {
+  // Frames of another run are dropped (counted); so are frames without a run id (a controller
+  // that has not accepted any command yet) once our controller has answered with our run id.
+  std::string detail;
+  bool ours_and_named = false;
+  const messages::Received r = messages::check_and_decode(
+      raw, frame_auth_,
+      [&](const std::string& id) {
+        ours_and_named = !command_.run_id.empty() && id == command_.run_id;
+        return command_.run_id.empty() || ours_and_named || (id.empty() && !bound_);
+      },
+      scratch_, detail);
+  if (r != messages::Received::ok) {  // undecodable, another run's, forged or signed with another key
+    ++bad_frames_;
+    bad_->report(std::string("SENSOR_FRAME/") + messages::to_string(r), detail, false);
+    return;
   }
+  if (ours_and_named) bound_ = true;
+  if (any_frame_ && scratch_.sequence <= last_frame_sequence_) {
+    ++bad_frames_;
+    bad_->report("SENSOR_FRAME/replayed",
+                 "frame sequence " + std::to_string(scratch_.sequence) + " <= last taken " +
+                     std::to_string(last_frame_sequence_),
+                 false);
+    return;
+  }
+  any_frame_ = true;
+  last_frame_sequence_ = scratch_.sequence;
   std::swap(frame_, scratch_);
   const TimePoint now = lcm_.now();
   if (frames_ > 0) max_gap_s_ = std::max(max_gap_s_, std::chrono::duration<double>(now - last_frame_time_).count());

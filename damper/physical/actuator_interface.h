@@ -10,6 +10,8 @@
 /// (messages/in_memory_lcm.h) exactly as on liblcm.
 
 #include "damper/physical/command_auth.h"
+#include "messages/bad_message_log.h"
+#include "messages/message_auth.h"
 #include "damper/physical/safety.h"
 #include "damper/physical/tracking.h"
 #include "hybrid_lcm/actuator_command_t.hpp"
@@ -28,7 +30,8 @@ class ActuatorInterface {
  public:
   using TimePoint = messages::TimePoint;
 
-  /// Subscribes to the sensor frames of `channels` on `lcm`.
+  /// Subscribes to the sensor frames of `channels` on `lcm`; a frame is taken only when its
+  /// HMAC verifies under `key` and its sequence is above the last taken one.
   ActuatorInterface(messages::LcmInterface& lcm, const messages::Channels& channels, const RunKey& key, SafetyLayer& safety);
   ActuatorInterface(const ActuatorInterface&) = delete;
   ActuatorInterface& operator=(const ActuatorInterface&) = delete;
@@ -52,8 +55,12 @@ class ActuatorInterface {
   /// Longest time between two consecutive frames since reset_frame_gap() (s).
   double max_frame_gap_s() const { return max_gap_s_; }
   void reset_frame_gap() { max_gap_s_ = 0.0; }
-  /// Frames that could not be decoded (reported on stderr naming the channel).
+  /// Frames dropped: undecodable, foreign run, bad HMAC or replayed (sequence not above the
+  /// last accepted frame's), each counted by kind in bad_messages() ("SENSOR_FRAME/bad_mac").
   long bad_frames() const { return bad_frames_; }
+  /// Where dropped frames are counted (the node's log; default: one of its own).
+  void count_bad_frames_in(messages::BadMessageLog* log) { bad_ = log ? log : &own_bad_; }
+  const messages::BadMessageLog& bad_messages() const { return *bad_; }
 
   /// From now on every frame taken is appended to `sink` (period number, command in force,
   /// measured drum displacement) while it has capacity: the loop never allocates, so reserve
@@ -61,11 +68,16 @@ class ActuatorInterface {
   void record_frames(std::vector<FrameSample>* sink) { frame_sink_ = sink; }
 
  private:
-  void on_frame();
+  void on_frame(const messages::RawMessage& raw);
 
   messages::LcmInterface& lcm_;
   messages::Channels channels_;
   CommandSigner signer_;
+  messages::MessageAuth frame_auth_;
+  messages::BadMessageLog own_bad_{"brfd-substructure"};
+  messages::BadMessageLog* bad_ = &own_bad_;
+  int64_t last_frame_sequence_ = 0;
+  bool any_frame_ = false;
   SafetyLayer& safety_;
   hybrid_lcm::actuator_command_t command_;
   std::vector<uint8_t> buffer_;

@@ -1,57 +1,23 @@
 #include "damper/physical/command_auth.h"
 
-#include <sodium.h>
-
-#include <cstring>
-#include <stdexcept>
 
 namespace damper::physical {
 
-namespace {
-
-void put_be(std::vector<uint8_t>& out, uint64_t v, int bytes) {
-  for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-
-void put_double(std::vector<uint8_t>& out, double d) {
-  uint64_t bits;
-  std::memcpy(&bits, &d, sizeof bits);
-  put_be(out, bits, 8);
-}
-
-}  // namespace
-
 void command_mac_input(const hybrid_lcm::actuator_command_t& cmd, std::vector<uint8_t>& out) {
-  out.clear();
-  put_be(out, static_cast<uint64_t>(cmd.utime), 8);
-  put_be(out, static_cast<uint32_t>(cmd.run_id.size() + 1), 4);  // LCM string: length incl. NUL
-  out.insert(out.end(), cmd.run_id.begin(), cmd.run_id.end());
-  out.push_back(0);
-  put_be(out, static_cast<uint64_t>(cmd.sequence), 8);
-  put_double(out, cmd.drum_displacement_in);
-  put_double(out, cmd.actuator1_position_in);
-  put_double(out, cmd.actuator2_position_in);
-  out.push_back(static_cast<uint8_t>(cmd.mode));
+  messages::MessageAuth::mac_input(cmd, out);
 }
 
-CommandSigner::CommandSigner(const RunKey& key) : key_(key) {
-  static_assert(crypto_auth_hmacsha256_KEYBYTES == 32, "run key is 32 bytes");
-  if (sodium_init() < 0) throw std::runtime_error("libsodium: sodium_init() failed");
-  buffer_.reserve(512);
-}
+CommandSigner::CommandSigner(const RunKey& key) : auth_(key) { buffer_.reserve(512); }
 
-void CommandSigner::sign(hybrid_lcm::actuator_command_t& cmd) {
-  command_mac_input(cmd, buffer_);
-  cmd.hmac_length = crypto_auth_hmacsha256_BYTES;
-  cmd.hmac.resize(crypto_auth_hmacsha256_BYTES);
-  crypto_auth_hmacsha256(cmd.hmac.data(), buffer_.data(), buffer_.size(), key_.data());
-}
+void CommandSigner::sign(hybrid_lcm::actuator_command_t& cmd) { auth_.sign(cmd, buffer_); }
 
 bool CommandSigner::verify(const hybrid_lcm::actuator_command_t& cmd) {
-  if (cmd.hmac_length != crypto_auth_hmacsha256_BYTES || cmd.hmac.size() != crypto_auth_hmacsha256_BYTES)
+  if (cmd.hmac_length != messages::kMacBytes || cmd.hmac.size() != static_cast<std::size_t>(messages::kMacBytes))
     return false;
-  command_mac_input(cmd, buffer_);
-  return crypto_auth_hmacsha256_verify(cmd.hmac.data(), buffer_.data(), buffer_.size(), key_.data()) == 0;
+  const int size = cmd.getEncodedSize();
+  buffer_.resize(static_cast<std::size_t>(size));
+  if (cmd.encode(buffer_.data(), 0, size) != size) return false;
+  return auth_.verify(buffer_.data(), buffer_.size());
 }
 
 CommandGate::CommandGate(const RunKey& key, const GateSettings& settings) : signer_(key), settings_(settings) {}

@@ -2,7 +2,8 @@
 /// @file command_auth.h
 /// Authentication of actuator commands (docs/physical.md, "Command authentication"):
 /// every actuator_command_t carries a sequence number and an HMAC-SHA256 (libsodium
-/// crypto_auth_hmacsha256) under the per-run key of run_key.h.
+/// crypto_auth_hmacsha256) under the per-run key of messages/run_key.h, computed as for every
+/// message of the run (messages/message_auth.h, one implementation).
 ///
 /// The HMAC covers the command's fields utime, run_id, sequence, drum_displacement_in,
 /// actuator1_position_in, actuator2_position_in, mode in this order, each encoded as LCM
@@ -17,7 +18,8 @@
 ///   4. its utime is no older than max_age_s and no further ahead than max_future_s of the
 ///      receiver's clock (else "stale").
 
-#include "damper/physical/run_key.h"
+#include "messages/message_auth.h"
+#include "messages/run_key.h"
 #include "hybrid_lcm/actuator_command_t.hpp"
 
 #include <cstdint>
@@ -25,6 +27,13 @@
 #include <vector>
 
 namespace damper::physical {
+
+// The run key lives with the messages it authenticates (messages/run_key.h).
+using messages::generate_run_key;
+using messages::KeyFileError;
+using messages::read_key_file;
+using messages::RunKey;
+using messages::write_key_file;
 
 /// Bytes the HMAC covers (see the file comment). `out` is resized; allocation-free once it
 /// has the capacity.
@@ -41,7 +50,7 @@ class CommandSigner {
   bool verify(const hybrid_lcm::actuator_command_t& cmd);
 
  private:
-  RunKey key_;
+  messages::MessageAuth auth_;
   std::vector<uint8_t> buffer_;
 };
 

@@ -1,7 +1,7 @@
 #include "damper/physical/physical_node.h"
 
 #include "damper/physical/realtime.h"
-#include "damper/physical/run_key.h"
+#include "messages/run_key.h"
 
 #include <nlohmann/json.hpp>
 
@@ -35,12 +35,14 @@ const std::vector<std::string>& record_columns() {
   return c;
 }
 
-messages::EndpointSettings endpoint_settings(const PhysicalNodeOptions& o) {
+messages::EndpointSettings endpoint_settings(const PhysicalNodeOptions& o, const RunKey& key) {
   messages::EndpointSettings e;
   e.channels = o.channels;
   e.run_id = o.run_id;
   e.sender = "brfd-substructure";
   e.heartbeat_period_s = o.heartbeat_period_s;
+  e.on_bad_message = o.on_bad_message;
+  e.key = key;
   return e;
 }
 
@@ -60,7 +62,8 @@ PhysicalNode::PhysicalNode(messages::LcmInterface& lcm, const PhysicalNodeOption
       safety_(o.settings.limits, period_),
       act_(lcm, o.channels, key, safety_),
       ats_(o.settings.ats, period_),
-      endpoint_(lcm, endpoint_settings(o), *this) {
+      endpoint_(lcm, endpoint_settings(o, key), *this) {
+  act_.count_bad_frames_in(&endpoint_.bad_message_log());
   hold_positions_.actuator1_in = o.model.semiactive.actuator1_initial_in;
   hold_positions_.actuator2_in = o.model.semiactive.actuator2_initial_in;
   safe_ = hold_positions_;
@@ -532,6 +535,8 @@ int PhysicalNode::finish() {
                        {"server_command_timeout_s", s_.watchdogs.server_command_timeout_s}};
     std::ofstream(dir / "safety.json") << std::setw(2) << sj << "\n";
   }
+  if (!o_.results_dir.empty()) endpoint_.bad_messages().write_json_file(
+      (std::filesystem::path(o_.results_dir) / messages::kSubstructureMessagesFile).string());
   std::cout << "brfd-substructure: physical run " << status
             << (trip_reason_.empty() ? std::string() : ": " + trip_reason_) << " (" << steps_done_ << " steps, "
             << act_.commands_sent() << " actuator commands)" << std::endl;

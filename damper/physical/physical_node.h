@@ -50,7 +50,9 @@ struct PhysicalNodeOptions {
   std::string run_id;               ///< answer only this run ("" = adopt the first START)
   BrfdParams model;                 ///< x'_1, x'_2: electric actuator hold positions
   PhysicalSettings settings;
-  std::string key_file;             ///< HMAC key (run_key.h)
+  std::string key_file;             ///< HMAC key of every message of the run (messages/run_key.h)
+  /// Bad messages (messages/bad_message_log.h): drop, or answer the next command with a FAULT.
+  messages::BadMessagePolicy on_bad_message = messages::BadMessagePolicy::drop;
   std::string results_dir;          ///< where physical.csv, tracking.json, safety.json go ("" = none)
   double heartbeat_period_s = 0.2;
   double start_watchdog_s = 120.0;  ///< exit 1 if no START arrives this long
@@ -82,6 +84,8 @@ class PhysicalNode : public messages::LoopActor, private messages::SubstructureE
   long steps_done() const { return steps_done_; }
   int64_t last_answered_step() const { return endpoint_.last_answered_step(); }
   const ActuatorInterface& actuator() const { return act_; }
+  /// Messages dropped so far (run control, drift commands, sensor frames), by kind.
+  const messages::BadMessageLog& bad_messages() const { return endpoint_.bad_messages(); }
   const AtsCompensator& ats() const { return ats_; }
   /// Tracking indicators of the steps so far (delay on the controller's clock).
   TrackingIndicators tracking() const;

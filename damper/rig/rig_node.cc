@@ -40,6 +40,7 @@ RigNode::RigNode(messages::LcmInterface& lcm, const RigNodeOptions& o, const phy
       c_(o.config),
       period_(1.0 / o.config.rate_hz),
       gate_(key, physical::GateSettings{o.run_id, o.config.auth.max_command_age_s, o.config.auth.max_future_s}),
+      frame_auth_(key),
       sim_(o.config) {
   if (!c_.replay.file.empty()) {
     replay_ = std::make_unique<BrfdTest>(read_brfd_test(c_.replay.file));
@@ -51,10 +52,17 @@ RigNode::RigNode(messages::LcmInterface& lcm, const RigNodeOptions& o, const phy
   frame_.run_id = o.run_id;
   frame_.last_rejection.reserve(512);
   buffer_.reserve(1024);
-  messages::subscribe_message<actuator_command_t>(
-      lcm_, o.channels.actuator_command(), cmd_,
-      [this](actuator_command_t& c, const messages::RawMessage&) { on_command(c, lcm_.utime()); },
-      [this](const messages::DecodeError& e, const messages::RawMessage&) { on_undecodable(e.what(), lcm_.utime()); });
+  // Nothing unauthenticated is decoded (messages/message_auth.h): a forged hmac_length of
+  // 2^31 - 1 would make LCM's decoder allocate it. The gate's first rule is the HMAC anyway.
+  lcm_.subscribe(o.channels.actuator_command(), [this](const messages::RawMessage& raw) {
+    if (!frame_auth_.verify(raw)) return on_forged(raw.size, lcm_.utime());
+    try {
+      messages::decode_message(raw, cmd_);
+    } catch (const messages::DecodeError& e) {
+      return on_undecodable(e.what(), lcm_.utime());
+    }
+    on_command(cmd_, lcm_.utime());
+  });
   if (!o.log_dir.empty()) {
     std::filesystem::create_directories(o.log_dir);
     const std::string path = (std::filesystem::path(o.log_dir) / "rig-commands.csv").string();
@@ -119,6 +127,13 @@ void RigNode::on_undecodable(const std::string& what, int64_t rx) {
   ++received_;
   reject("undecodable: not an actuator_command_t of this protocol version: " + what);
   log_row(rx, nullptr, "undecodable", -1);
+}
+
+void RigNode::on_forged(std::size_t bytes, int64_t rx) {
+  ++received_;
+  ++by_kind_[physical::to_string(CommandGate::Verdict::forged)];
+  reject("forged: HMAC does not verify under the run key (" + std::to_string(bytes) + " bytes, not decoded)");
+  log_row(rx, nullptr, physical::to_string(CommandGate::Verdict::forged), -1);
 }
 
 void RigNode::on_command(const actuator_command_t& cmd, int64_t rx) {
@@ -231,7 +246,7 @@ void RigNode::tick() {
   frame_.actuator1_force_lb = r.actuator1_force_lb;
   frame_.actuator2_force_lb = r.actuator2_force_lb;
   frame_.rejected_commands = static_cast<int32_t>(rejected_);
-  messages::publish_message(lcm_, o_.channels.sensor_frame(), frame_, buffer_);
+  frame_auth_.publish(lcm_, o_.channels.sensor_frame(), frame_, buffer_);
 }
 
 

@@ -9,7 +9,7 @@
 /// command, no command for idle_exit_s, SIGTERM) it writes rig-summary.json.
 
 #include "damper/physical/command_auth.h"
-#include "damper/physical/run_key.h"
+#include "messages/run_key.h"
 #include "damper/rig/rig_config.h"
 #include "damper/rig/rig_simulator.h"
 #include "hybrid_lcm/actuator_command_t.hpp"
@@ -34,7 +34,7 @@ struct RigNodeOptions {
   bool lab_network = false;
   messages::Channels channels;
   std::string run_id;          ///< accept only this run's commands ("" = the first authentic one's)
-  std::string key_file;        ///< HMAC key (damper/physical/run_key.h)
+  std::string key_file;        ///< HMAC key (messages/run_key.h)
   std::string log_dir;         ///< rig-commands.csv, rig-summary.json, rig-config.yaml ("" = none)
   RigConfig config;
 };
@@ -75,6 +75,7 @@ class RigNode : public messages::LoopActor {
  private:
   void on_command(const hybrid_lcm::actuator_command_t& cmd, int64_t rx_utime);
   void on_undecodable(const std::string& what, int64_t rx_utime);
+  void on_forged(std::size_t bytes, int64_t rx_utime);
   bool within_limits(const hybrid_lcm::actuator_command_t& c, std::string& why) const;
   void reject(const std::string& why);
   void log_row(int64_t rx, const hybrid_lcm::actuator_command_t* c, const char* verdict, int within);
@@ -86,6 +87,7 @@ class RigNode : public messages::LoopActor {
   RigConfig c_;
   double period_;
   physical::CommandGate gate_;
+  messages::MessageAuth frame_auth_;  ///< signs the sensor frames (messages/message_auth.h)
   RigSimulator sim_;
   std::unique_ptr<damper::BrfdTest> replay_;
   std::size_t replay_index_ = 0;

@@ -3,6 +3,7 @@
 #include "damper/model/brfd_config.h"
 #include "damper/physical/physical_node.h"
 #include "damper/substructure/substructure_node.h"
+#include "messages/run_key.h"
 
 #include <CLI/CLI.hpp>
 
@@ -25,8 +26,14 @@ int main(int argc, char** argv) {
   app.add_option("--mode", mode, "virtual (BRFD model) or physical (rig / lab controller, docs/physical.md)")
       ->check(CLI::IsMember({"virtual", "physical"}));
   app.add_option("--physical-config", physical_config, "physical mode: the run config's rig block (physical.yaml)");
-  app.add_option("--key-file", p.key_file, "physical mode: HMAC key file of the actuator commands");
-  app.add_option("--results-dir", p.results_dir, "physical mode: where physical.csv, tracking.json, safety.json go");
+  app.add_option("--key-file", p.key_file,
+                 "HMAC key file of the run (64 hex characters, mode 0600): every message is signed and verified")
+      ->required();
+  app.add_option("--results-dir", p.results_dir,
+                 "where substructure-messages.json (and in physical mode physical.csv, tracking.json, safety.json) go");
+  std::string on_bad_message = "drop";
+  app.add_option("--on-bad-message", on_bad_message, "a malformed, foreign, forged or replayed message: drop or stop")
+      ->check(CLI::IsMember({"drop", "stop"}));
   // Exit codes as hybridsim's (README "Exit codes"): a command-line error is bad input, 2.
   try {
     app.parse(argc, argv);
@@ -40,10 +47,12 @@ int main(int argc, char** argv) {
       if (model_config.empty()) throw std::invalid_argument("--model-config is required (except with --echo)");
       o.model = damper::load_brfd_params(model_config);
     }
+    o.key = messages::read_key_file(p.key_file);
+    o.on_bad_message = p.on_bad_message = messages::parse_bad_message_policy(on_bad_message);
+    o.results_dir = p.results_dir;
     if (mode == "physical") {
       if (o.echo) throw std::invalid_argument("--echo and --mode physical exclude each other");
       if (physical_config.empty()) throw std::invalid_argument("--mode physical needs --physical-config");
-      if (p.key_file.empty()) throw std::invalid_argument("--mode physical needs --key-file");
       p.url = o.url;
       p.lab_network = o.lab_network;
       p.channels = o.channels;

@@ -13,6 +13,8 @@ messages::EndpointSettings endpoint_settings(const SubstructureNodeOptions& o) {
   e.run_id = o.run_id;
   e.sender = "brfd-substructure";
   e.heartbeat_period_s = o.heartbeat_period_s;
+  e.key = o.key;
+  e.on_bad_message = o.on_bad_message;
   return e;
 }
 
@@ -121,8 +123,12 @@ int run_substructure_node(const SubstructureNodeOptions& options) {
     messages::run_loop(lcm, node);
   } catch (const std::exception& e) {  // the transport failed, or a handler threw (after lcm_handle)
     std::cerr << "brfd-substructure: LCM handle failed on '" << options.url << "': " << e.what() << "\n";
+    if (!options.results_dir.empty())
+      node.bad_messages().write_json_file(options.results_dir + "/" + messages::kSubstructureMessagesFile);
     return 1;
   }
+  if (!options.results_dir.empty())
+    node.bad_messages().write_json_file(options.results_dir + "/" + messages::kSubstructureMessagesFile);
   return node.exit_code();
 }
 

@@ -27,6 +27,9 @@ struct SubstructureNodeOptions {
   double max_drum_velocity_in_per_s = 200.0; ///< commands beyond this are refused (fault)
   double command_watchdog_s = 30.0;  ///< exit with an error if a started run goes silent this long
   double heartbeat_period_s = 0.2;
+  messages::RunKey key{};            ///< the run key: every message signed and verified (message_auth.h)
+  messages::BadMessagePolicy on_bad_message = messages::BadMessagePolicy::drop;
+  std::string results_dir;           ///< where substructure-messages.json goes at exit ("" = none)
 };
 
 /// The virtual node as a messages::LoopActor on any messages::LcmInterface; its protocol side
@@ -40,6 +43,8 @@ class SubstructureNode : public messages::LoopActor, private messages::Substruct
   /// 0 STOP, 3 ABORT, 1 command watchdog; -1 while running.
   int exit_code() const { return exit_code_; }
   long steps() const { return steps_; }
+  /// Messages dropped so far (run control, drift commands), by kind.
+  const messages::BadMessageLog& bad_messages() const { return endpoint_.bad_messages(); }
 
  private:
   void on_run_control(const hybrid_lcm::run_control_t& msg, messages::TimePoint now) override;
@@ -58,7 +63,8 @@ class SubstructureNode : public messages::LoopActor, private messages::Substruct
 };
 
 /// Runs until STOP (returns 0), ABORT (returns 3) or a watchdog/transport error (returns 1).
-/// Messages that cannot be decoded are reported on stderr naming the channel.
+/// Bad messages (undecodable, foreign, forged, replayed) are counted, said once per kind on
+/// stderr and dropped; the counts go to <results_dir>/substructure-messages.json at exit.
 int run_substructure_node(const SubstructureNodeOptions& options);
 
 }  // namespace damper

@@ -120,6 +120,7 @@ int batch_worker_command(const BatchWorkerOptions& w) {
         summary = run_hybrid(config, session->substructure(), run_id);
         for (const std::string& note : session->finish(summary.status == "ok"))
           std::cerr << "hybridsim batch worker: " << note << "\n";
+        summary.bad_messages = session->bad_messages();
       } catch (const std::exception& e) {
         summary.status = "failed";
         summary.error = e.what();

@@ -1,5 +1,7 @@
 #include "server/run/bench.h"
 
+#include "messages/run_key.h"
+
 #include "control/controller.h"
 #include "structure/shear_building.h"
 #include "server/run/hybrid_run.h"
@@ -171,9 +173,13 @@ int bench_command(const BenchOptions& options) {
     link.step_timeout_s = 1.0;
     std::vector<double> raw_us;
     {
+      // Signed and verified as every run (messages/message_auth.h): the figure includes the HMACs.
+      const std::string key_path = temp_dir("echo-key") + "/run.key";
+      link.key = messages::generate_run_key();
+      messages::write_key_file(key_path, link.key);
       ChildProcess echo(sibling_executable(three.damper.executable),
                         {"--echo", "--url", link.url, "--channel-prefix", link.channels.prefix,
-                         "--run-id", "bench-echo"},
+                         "--run-id", "bench-echo", "--key-file", key_path},
                         "");
       LcmSubstructure sub(link);
       sub.keep_round_trips(true);

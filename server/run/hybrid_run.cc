@@ -4,7 +4,7 @@
 #include "common/run_guard.h"
 #include "common/strict_yaml.h"
 #include "damper/model/brfd_config.h"
-#include "damper/physical/run_key.h"
+#include "messages/run_key.h"
 #include "server/run/hdf5_time_history.h"
 #include "server/run/time_history_writer.h"
 #include "server/run/substructure_session.h"
@@ -414,6 +414,21 @@ std::string summary_json_text(const RunSummary& s, const RunConfig& config) {
   j["status"] = s.status;
   j["error"] = s.error;
   if (s.signal != 0) j["signal"] = common::signal_name(s.signal);
+  if (config.transport.kind == "lcm") {
+    // Every LCM run says what it dropped (all zero: an empty object per process).
+    nlohmann::json bad = nlohmann::json::object();
+    long total = 0;
+    for (const auto& [who, kinds] : s.bad_messages) {
+      bad[who] = nlohmann::json::object();
+      for (const auto& [kind, n] : kinds) {
+        bad[who][kind] = n;
+        total += n;
+      }
+    }
+    j["bad_messages"] = bad;
+    j["bad_messages_total"] = total;
+    j["on_bad_message"] = config.transport.on_bad_message;
+  }
   j["steps"] = s.steps;
   j["dt_s"] = config.dt_s;
   j["output_every_n_steps"] = config.output.every_n_steps;
@@ -511,7 +526,8 @@ const std::vector<std::string>& previous_run_files() {
   static const std::vector<std::string> files{
       "summary.json",   "time_history.csv", "effective-config.yaml", "damper-model.yaml", "run.lcmlog",
       "substructure.log", "physical.yaml",  "physical.csv",          "tracking.json",     "safety.json",
-      "run.key",        "rig.log",          "rig-samples.csv", "time_history.h5"};
+      "run.key",        "rig.log",          "rig-samples.csv", "time_history.h5",
+      "substructure-messages.json"};
   return files;
 }
 
@@ -585,14 +601,6 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
       return common::kExitBadInput;
     }
     fs::remove(check_log);
-    if (config.rig.rig.key_file.empty()) {
-      try {
-        damper::physical::write_key_file(physical_key_path(config, out.string()), damper::physical::generate_run_key());
-      } catch (const std::exception& e) {
-        std::cerr << "hybridsim run: " << e.what() << "\n";
-        return common::kExitBadInput;
-      }
-    }
   }
 
   RunSummary summary;
@@ -600,6 +608,7 @@ int run_command(const std::string& config_path, const std::string& output_dir_ov
     SubstructureSession session(config, out.string(), run_id);
     summary = run_hybrid(config, session.substructure(), run_id);
     for (const std::string& note : session.finish(summary.status == "ok")) std::cerr << "hybridsim run: " << note << "\n";
+    summary.bad_messages = session.bad_messages();
   } catch (const common::Interrupted& e) {
     summary.status = "interrupted";
     summary.signal = e.signal();

@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct RunSummary {
   std::string status = "ok";          ///< "ok", "failed" or "interrupted" (SIGINT/SIGTERM)
   std::string error;                  ///< why it failed or stopped
   int signal = 0;                     ///< the signal that interrupted the run (0: none)
+  /// LCM runs: messages dropped as malformed, foreign-run, forged (bad HMAC), replayed or
+  /// unbound, by process ("hybridsim", "brfd-substructure") and kind ("FORCE_FEEDBACK/bad_mac").
+  std::map<std::string, std::map<std::string, long>> bad_messages;
   long steps = 0;                     ///< steps completed
   double sim_time_s = 0.0;            ///< simulated time reached
   double wall_s = 0.0;                ///< wall-clock time of the run, results on disk

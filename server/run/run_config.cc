@@ -84,7 +84,7 @@ RunConfig load_run_config(const std::string& path) {
   } else {
     const common::YamlSection t = top.section("transport");
     t.allow_only({"kind", "url", "private_netns", "lab_network", "channel_prefix", "step_timeout_s",
-                  "start_timeout_s", "write_lcm_log"});
+                  "start_timeout_s", "write_lcm_log", "on_bad_message", "key_file"});
     tr.kind = t.get_choice("kind", {"lcm", "in_process"});
     tr.url = t.get_string("url", "");
     if (tr.kind == "lcm" && tr.url.empty()) t.fail("url", "required when transport.kind is lcm");
@@ -94,6 +94,12 @@ RunConfig load_run_config(const std::string& path) {
     tr.step_timeout_s = t.get_double_in("step_timeout_s", tr.step_timeout_s, 1e-3, 60.0);
     tr.start_timeout_s = t.get_double_in("start_timeout_s", tr.start_timeout_s, 1e-3, 600.0);
     tr.write_lcm_log = t.get_bool("write_lcm_log", tr.write_lcm_log);
+    tr.on_bad_message = t.get_choice("on_bad_message", tr.on_bad_message, {"drop", "stop"});
+    if (t.has("key_file")) {
+      tr.key_file = resolve(path, t.get_string("key_file"));
+      if (tr.key_file.empty() || !fs::is_regular_file(tr.key_file))
+        t.fail("key_file", "no such key file: '" + tr.key_file + "' (64 hex characters, mode 0600)");
+    }
     if (c.damper.mode == "physical" && tr.kind != "lcm")
       t.fail("kind", "damper.mode physical needs transport.kind lcm (the rig is another process)");
   }
@@ -113,6 +119,15 @@ RunConfig load_run_config(const std::string& path) {
   // Physical mode (docs/physical.md): the rig block; absent = defaults (local emulator).
   c.rig.rig.config = resolve(path, c.rig.rig.config);
   if (top.has("rig")) c.rig = damper::physical::physical_settings_from_yaml(top.section("rig"));
+  // One HMAC key per run (messages/run_key.h): a physical run's rig.key_file, else
+  // transport.key_file, else a fresh <results>/run.key.
+  if (c.damper.mode == "physical" && !c.rig.rig.key_file.empty() && !tr.key_file.empty() &&
+      fs::absolute(c.rig.rig.key_file) != fs::absolute(tr.key_file))
+    top.section("transport").fail("key_file", "one HMAC key per run: rig.key_file is the run's key, give the same file or only one");
+  if (tr.kind == "lcm" && c.damper.launch == "external" && tr.key_file.empty() &&
+      (c.damper.mode != "physical" || c.rig.rig.key_file.empty()))
+    top.section("transport").fail("key_file", "required when damper.launch is external: the substructure started by hand must hold the "
+                       "run's HMAC key (brfd-substructure --key-file)");
   if (c.damper.mode == "physical") {
     if (std::abs(c.dt_s * c.rig.controller_rate_hz - 1.0) > 1e-9)
       run.fail("dt_s", "damper.mode physical sends one actuator command per step: dt_s must be 1 / "
@@ -216,7 +231,9 @@ std::string run_config_to_yaml(const RunConfig& c) {
     << t.private_netns << "\n  lab_network: " << t.lab_network << "\n  channel_prefix: "
     << t.channel_prefix << "\n  step_timeout_s: " << t.step_timeout_s
     << "\n  start_timeout_s: " << t.start_timeout_s << "\n  write_lcm_log: " << t.write_lcm_log
-    << "\n"
+    << "\n  on_bad_message: " << t.on_bad_message;
+  if (!t.key_file.empty()) o << "\n  key_file: \"" << fs::absolute(t.key_file).string() << "\"";
+  o << "\n"
     << "output:\n  dir: " << fs::absolute(c.output.dir).string()
     << "\n  flush_every_steps: " << c.output.flush_every_steps
     << "\n  every_n_steps: " << c.output.every_n_steps

@@ -43,6 +43,15 @@ struct TransportSettings {
   double step_timeout_s = 1.0;       ///< max wait for one force feedback
   double start_timeout_s = 10.0;     ///< max wait for the substructure's first heartbeat
   bool write_lcm_log = true;         ///< write the run's traffic as an LCM log (lcm-logplayer)
+  /// A malformed, foreign-run, forged (bad HMAC), replayed or unbound message on the link:
+  /// "drop" (counted in summary.json bad_messages, said once per kind, the run goes on) or
+  /// "stop" (the run fails naming the first one). README "Reliability".
+  std::string on_bad_message = "drop";
+  /// HMAC key file of the run (messages/run_key.h; 64 hex characters, mode 0600). Empty: a
+  /// fresh key per run in <results>/run.key. Required with damper.launch external (the
+  /// substructure started by hand must hold the same key); a physical run's rig.key_file is
+  /// the run's key when given.
+  std::string key_file;
 };
 
 /// Which substructure answers and how it is started.

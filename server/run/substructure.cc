@@ -5,6 +5,7 @@
 #include "hybrid_lcm/heartbeat_t.hpp"
 #include "hybrid_lcm/run_control_t.hpp"
 
+#include "messages/message_auth.h"
 #include "messages/transport.h"
 
 #include <lcm/lcm-cpp.hpp>
@@ -12,6 +13,7 @@
 #include "common/run_guard.h"
 
 #include <cmath>
+#include <map>
 #include <cstdio>
 
 namespace server {
@@ -58,6 +60,11 @@ struct LcmSubstructure::Impl {
   std::string last_heartbeat_fault;
   std::vector<uint8_t> encode_buffer;
   std::string waiting_on;  ///< channel of the reply being waited for (messages)
+  std::unique_ptr<messages::MessageAuth> auth;
+  std::unique_ptr<messages::BadMessageLog> bad;
+  int64_t sequence = 0;                     ///< of the messages the server publishes
+  int64_t last_feedback_sequence = 0;       ///< of the last reply taken
+  std::map<std::string, int64_t> heartbeat_sequence;  ///< last heartbeat taken, per sender
 
   void log_event(const std::string& channel, const void* data, int size) {
     if (!log) return;
@@ -71,9 +78,10 @@ struct LcmSubstructure::Impl {
   }
 
   template <class T>
-  void publish(const std::string& channel, const T& msg) {
+  void publish(const std::string& channel, T& msg) {
     try {
-      messages::publish_message(*lcm, channel, msg, encode_buffer);
+      msg.sequence = ++sequence;
+      auth->publish(*lcm, channel, msg, encode_buffer);
     } catch (const std::exception& e) {
       throw SubstructureError(e.what());
     }
@@ -82,11 +90,26 @@ struct LcmSubstructure::Impl {
 
   // Handlers run inside messages::LcmTransport's guard: a DecodeError is rethrown by
   // handle_until after lcm_handle has returned, never through liblcm.
+  // A bad message is counted and dropped; under policy stop report() throws, and the guard
+  // hands the BadMessageError to pump_until after lcm_handle has returned.
   void on_feedback(const messages::RawMessage& m) {
     log_event(m.channel, m.data, static_cast<int>(m.size));
     hybrid_lcm::force_feedback_t msg;
-    messages::decode_message(m, msg);
-    if (msg.run_id != run_id || msg.step != expected_step) return;  // other run or stale reply
+    std::string detail;
+    const messages::Received r = messages::check_and_decode(
+        m, *auth, [this](const std::string& id) { return id == run_id; }, msg, detail);
+    if (r != messages::Received::ok) return bad->report(std::string("FORCE_FEEDBACK/") + messages::to_string(r), detail);
+    if (msg.sequence <= last_feedback_sequence)
+      return bad->report("FORCE_FEEDBACK/replayed", "sequence " + std::to_string(msg.sequence) +
+                                                        " <= last taken " + std::to_string(last_feedback_sequence));
+    if (have_feedback || msg.step != expected_step || msg.command_sequence != command.sequence)
+      return bad->report("FORCE_FEEDBACK/unbound_reply",
+                         "reply for step " + std::to_string(msg.step) + " / command sequence " +
+                             std::to_string(msg.command_sequence) + " while " +
+                             (have_feedback ? "no command" : "step " + std::to_string(expected_step) + " / command sequence " +
+                                                                 std::to_string(command.sequence)) +
+                             " is outstanding");
+    last_feedback_sequence = msg.sequence;
     feedback = std::move(msg);
     have_feedback = true;
   }
@@ -94,8 +117,19 @@ struct LcmSubstructure::Impl {
   void on_heartbeat(const messages::RawMessage& m) {
     log_event(m.channel, m.data, static_cast<int>(m.size));
     hybrid_lcm::heartbeat_t hb;
-    messages::decode_message(m, hb);
-    if (hb.run_id != run_id) return;
+    std::string detail, peeked;
+    const messages::Received r = messages::check_and_decode(
+        m, *auth, [&](const std::string& id) { peeked = id; return id == run_id; }, hb, detail);
+    // An idle node before any START has no run id: it belongs to no run yet, nothing to drop.
+    if (r == messages::Received::foreign_run && peeked.empty()) return;
+    if (r != messages::Received::ok) return bad->report(std::string("HEARTBEAT/") + messages::to_string(r), detail);
+    auto [last, fresh] = heartbeat_sequence.emplace(hb.sender, hb.sequence);
+    if (!fresh) {
+      if (hb.sequence <= last->second)
+        return bad->report("HEARTBEAT/replayed", "sender '" + hb.sender + "' sequence " + std::to_string(hb.sequence) +
+                                                     " <= last taken " + std::to_string(last->second));
+      last->second = hb.sequence;
+    }
     if (hb.state == hybrid_lcm::heartbeat_t::STATE_READY || hb.state == hybrid_lcm::heartbeat_t::STATE_RUNNING)
       substructure_ready = true;
     if (hb.state == hybrid_lcm::heartbeat_t::STATE_FAULT) last_heartbeat_fault = hb.sender + " reports a fault";
@@ -112,6 +146,8 @@ struct LcmSubstructure::Impl {
         dispatched = lcm->handle_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(50)));
       } catch (const messages::TransportError& e) {
         throw SubstructureError("LCM handle() failed on URL '" + settings.url + "': " + e.what());
+      } catch (const messages::BadMessageError& e) {  // policy stop
+        throw SubstructureError(e.what());
       }
       if (!dispatched && settings.peer_gone) {
         const std::string gone = settings.peer_gone();
@@ -125,6 +161,8 @@ struct LcmSubstructure::Impl {
 
 LcmSubstructure::LcmSubstructure(const LcmLinkSettings& settings) : impl_(std::make_unique<Impl>()) {
   impl_->settings = settings;
+  impl_->auth = std::make_unique<messages::MessageAuth>(settings.key);
+  impl_->bad = std::make_unique<messages::BadMessageLog>("hybridsim", settings.on_bad_message);
   impl_->lcm = std::make_unique<messages::LcmTransport>(settings.url, settings.lab_network);
   if (!settings.log_path.empty()) {
     impl_->log = std::make_unique<lcm::LogFile>(settings.log_path, "w");
@@ -232,6 +270,8 @@ void LcmSubstructure::exchange(long step, double sim_time_s, const Eigen::Vector
     }
   }
 }
+
+const messages::BadMessageLog& LcmSubstructure::bad_messages() const { return *impl_->bad; }
 
 void LcmSubstructure::stop(bool abort, const std::string& reason) {
   Impl& m = *impl_;

@@ -7,7 +7,9 @@
 
 #include "damper/model/actuator_drive.h"
 #include "damper/model/brfd_model.h"
+#include "messages/bad_message_log.h"
 #include "messages/lcm_bus.h"
+#include "messages/run_key.h"
 
 #include <Eigen/Dense>
 
@@ -92,11 +94,24 @@ struct LcmLinkSettings {
   /// Asked every ~50 ms while waiting for the peer: a non-empty answer (e.g. "brfd-substructure
   /// exited with code 1") ends the wait at once with that reason instead of at the timeout.
   std::function<std::string()> peer_gone;
+  /// The run key (messages/run_key.h): every message signed, every received one verified.
+  messages::RunKey key{};
+  /// A malformed, foreign, forged, replayed or unbound message: drop (counted) or stop the run.
+  messages::BadMessagePolicy on_bad_message = messages::BadMessagePolicy::drop;
 };
 
 /// A substructure in another process, over LCM: publishes drift_command_t, waits for the
 /// force_feedback_t of the same run and step. Handshake: run_control_t START is repeated
 /// until the substructure's heartbeat for this run arrives.
+///
+/// Authentication (messages/message_auth.h, docs/physical.md "Message authentication"):
+/// every command and run control is signed under the run key with the next value of one
+/// sequence. A force feedback is taken only when it decodes, names this run, verifies, has a
+/// sequence above the last taken reply's (else a replay) and answers the outstanding command:
+/// its step and command_sequence equal the command's, and no reply was taken for it yet
+/// (else "unbound_reply": early, late or duplicate). A heartbeat is taken when it decodes,
+/// names this run, verifies and its sequence increases per sender. Everything else is counted
+/// in bad_messages(), said once per kind and dropped (policy stop: the run fails naming it).
 class LcmSubstructure : public Substructure {
  public:
   explicit LcmSubstructure(const LcmLinkSettings& settings);
@@ -109,6 +124,8 @@ class LcmSubstructure : public Substructure {
   /// Round-trip times of every exchange so far, microseconds (for the benchmark).
   const std::vector<double>& round_trip_us() const { return round_trip_us_; }
   void keep_round_trips(bool keep) { keep_round_trips_ = keep; }
+  /// Messages this side dropped, by kind ("FORCE_FEEDBACK/bad_mac", ...).
+  const messages::BadMessageLog& bad_messages() const;
 
  private:
   struct Impl;

@@ -3,7 +3,9 @@
 #include "damper/model/brfd_config.h"
 #include "damper/physical/physical_config.h"
 #include "damper/physical/realtime.h"
+#include "messages/bad_message_log.h"
 #include "messages/lcm_bus.h"
+#include "messages/run_key.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -21,6 +23,7 @@ LcmLinkSettings lcm_link_settings(const RunConfig& config, const std::string& ou
   link.step_timeout_s = config.transport.step_timeout_s;
   link.start_timeout_s = config.transport.start_timeout_s;
   if (config.transport.write_lcm_log) link.log_path = (fs::path(out_dir) / "run.lcmlog").string();
+  link.on_bad_message = messages::parse_bad_message_policy(config.transport.on_bad_message);
   return link;
 }
 
@@ -30,7 +33,7 @@ bool launches_local_rig(const RunConfig& config) {
 
 SubstructureSession::SubstructureSession(const RunConfig& config, const std::string& out_dir,
                                          const std::string& run_id)
-    : config_(config) {
+    : config_(config), out_dir_(out_dir) {
   if (config.transport.kind == "in_process") {
     substructure_ = std::make_unique<InProcessSubstructure>(config.damper_model);
     return;
@@ -46,6 +49,16 @@ SubstructureSession::SubstructureSession(const RunConfig& config, const std::str
   // substructure's priority); set before LCM starts its receive thread, which inherits it.
   if (physical) damper::physical::enter_realtime(std::max(0, config.rig.realtime_priority - 10), "hybridsim");
   LcmLinkSettings link = lcm_link_settings(config, out_dir);
+  // The run's HMAC key: a fresh one unless the config names a file (a lab's or an external
+  // substructure's).
+  const std::string key_path = run_key_path(config, out_dir);
+  try {
+    if (key_path == (fs::path(out_dir) / "run.key").string())
+      messages::write_key_file(key_path, messages::generate_run_key());
+    link.key = messages::read_key_file(key_path);
+  } catch (const std::exception& e) {
+    throw SubstructureSetupError(e.what());
+  }
   // A spawned substructure that exits (or never starts) ends the link's wait at once, not at
   // the start or step timeout. A dead rig is the substructure's to notice (sensor-frame
   // watchdog, safety trip, ramp to safe): its report says more than an exit code.
@@ -89,7 +102,18 @@ std::vector<std::string> SubstructureSession::finish(bool run_ok) {
     if (code != 0) notes.push_back("note: brfd-rig exited with code " + std::to_string(code) + " (see rig.log)");
     spawned_rig_ = false;
   }
+  if (lcm_ != nullptr && config_.damper.launch == "spawn")
+    substructure_bad_messages_ = messages::BadMessageLog::read_json_file(
+        (fs::path(out_dir_) / messages::kSubstructureMessagesFile).string());
   return notes;
+}
+
+std::map<std::string, std::map<std::string, long>> SubstructureSession::bad_messages() const {
+  std::map<std::string, std::map<std::string, long>> out;
+  if (lcm_ == nullptr) return out;
+  out["hybridsim"] = lcm_->bad_messages().counts();
+  out["brfd-substructure"] = substructure_bad_messages_;
+  return out;
 }
 
 ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
@@ -104,25 +128,28 @@ ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_
   std::vector<std::string> args{"--model-config", model_path, "--url", config.transport.url,
                                 "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id};
   if (config.transport.lab_network) args.push_back("--lab-network");
+  args.insert(args.end(), {"--key-file", run_key_path(config, out_dir), "--results-dir", out_dir,
+                           "--on-bad-message", config.transport.on_bad_message});
   if (config.damper.mode == "physical") {
     const std::string physical_path = (fs::path(out_dir) / "physical.yaml").string();
     std::ofstream(physical_path) << "# rig block of the run config, for brfd-substructure --mode physical\n"
                                  << damper::physical::physical_settings_to_yaml(config.rig);
-    args.insert(args.end(), {"--mode", "physical", "--physical-config", physical_path, "--key-file",
-                             physical_key_path(config, out_dir), "--results-dir", out_dir});
+    args.insert(args.end(), {"--mode", "physical", "--physical-config", physical_path});
   }
   return ChildProcess(sibling_executable(config.damper.executable), args, log_path);
 }
 
-std::string physical_key_path(const RunConfig& config, const std::string& out_dir) {
-  return config.rig.rig.key_file.empty() ? (fs::path(out_dir) / "run.key").string() : config.rig.rig.key_file;
+std::string run_key_path(const RunConfig& config, const std::string& out_dir) {
+  if (config.damper.mode == "physical" && !config.rig.rig.key_file.empty()) return config.rig.rig.key_file;
+  if (!config.transport.key_file.empty()) return config.transport.key_file;
+  return (fs::path(out_dir) / "run.key").string();
 }
 
 ChildProcess spawn_rig(const RunConfig& config, const std::string& out_dir, const std::string& run_id,
                        const std::string& log_path) {
   std::vector<std::string> args{"--config", config.rig.rig.config, "--url", config.transport.url,
                                 "--channel-prefix", config.transport.channel_prefix, "--run-id", run_id,
-                                "--key-file", physical_key_path(config, out_dir), "--log-dir", out_dir};
+                                "--key-file", run_key_path(config, out_dir), "--log-dir", out_dir};
   if (config.transport.lab_network) args.push_back("--lab-network");
   return ChildProcess(sibling_executable(config.rig.rig.executable), args, log_path);
 }

@@ -8,12 +8,17 @@
 ///    (damper.launch spawn; virtual or --mode physical) and, for a physical run with
 ///    rig.launch local, the spawned brfd-rig.
 /// Files it writes into the results folder: damper-model.yaml (the model handed to the
-/// substructure, full precision), physical.yaml, run.lcmlog, substructure.log, rig.log.
+/// substructure, full precision), physical.yaml, run.lcmlog, substructure.log, rig.log, and
+/// run.key: the run's HMAC key (mode 0600; messages/run_key.h) unless the config names one
+/// (rig.key_file, transport.key_file). Its path, never the key, goes on the command line of
+/// brfd-substructure and brfd-rig; the spawned substructure writes its bad-message counts
+/// to substructure-messages.json.
 
 #include "common/process.h"
 #include "server/run/run_config.h"
 #include "server/run/substructure.h"
 
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -49,24 +54,31 @@ class SubstructureSession {
   /// rig to its safe state) and returns notes worth printing (non-zero exit codes).
   std::vector<std::string> finish(bool run_ok);
 
+  /// Messages dropped on the run's links, by process and kind (summary.json "bad_messages"):
+  /// "hybridsim" (this side) and, after finish(), "brfd-substructure" (its file).
+  std::map<std::string, std::map<std::string, long>> bad_messages() const;
+
  private:
   const RunConfig& config_;
   std::unique_ptr<Substructure> substructure_;
   LcmSubstructure* lcm_ = nullptr;
   ChildProcess substructure_process_, rig_process_;
   bool spawned_substructure_ = false, spawned_rig_ = false;
+  std::string out_dir_;
+  std::map<std::string, long> substructure_bad_messages_;
 };
 
 /// Writes `damper-model.yaml` into `out_dir` and starts the substructure process of the
 /// config on it, with the config's URL and channel prefix. Child output goes to `log_path`.
-/// Physical mode also writes `physical.yaml` (the rig block) and passes --mode physical, the
-/// key file (physical_key_path) and the results folder.
+/// Passes the key file (run_key_path), the bad-message policy and the results folder;
+/// physical mode also writes `physical.yaml` (the rig block) and passes --mode physical.
 ChildProcess spawn_substructure(const RunConfig& config, const std::string& out_dir,
                                 const std::string& run_id, const std::string& log_path);
 
-/// Physical mode: the HMAC key file of the run's actuator commands: rig.key_file if the config
-/// gives one, else <out_dir>/run.key (written by run_command for a local rig).
-std::string physical_key_path(const RunConfig& config, const std::string& out_dir);
+/// The HMAC key file of an LCM run (every message of both links): rig.key_file of a physical
+/// run if given, else transport.key_file if given, else <out_dir>/run.key (written fresh by
+/// SubstructureSession).
+std::string run_key_path(const RunConfig& config, const std::string& out_dir);
 
 /// Physical mode with `rig: launch: local`: starts brfd-rig (the lab-controller emulator) with
 /// the config's rig.config, URL, channel prefix, run id and key; its logs go to out_dir.

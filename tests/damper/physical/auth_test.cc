@@ -3,7 +3,7 @@
 // rejects forged, tampered, foreign-run, replayed and stale commands, each with its reason.
 // The same over LCM against a running brfd-rig is in system_test.cc.
 #include "damper/physical/command_auth.h"
-#include "damper/physical/run_key.h"
+#include "messages/run_key.h"
 #include "run_process.h"
 
 #include <gtest/gtest.h>

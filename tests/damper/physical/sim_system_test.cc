@@ -19,6 +19,7 @@
 #include "hybrid_lcm/actuator_command_t.hpp"
 #include "hybrid_lcm/sensor_frame_t.hpp"
 #include "messages/in_memory_lcm.h"
+#include "messages/message_auth.h"
 #include "server/run/run_config.h"
 #include "test_paths.h"
 
@@ -74,8 +75,12 @@ class SimServer : public messages::LoopActor {
           (h.state == hybrid_lcm::heartbeat_t::STATE_READY || h.state == hybrid_lcm::heartbeat_t::STATE_RUNNING))
         ready_ = true;
     });
-    messages::subscribe_message<force_feedback_t>(lcm_, ch_.force_feedback(), fb_, [this](force_feedback_t& f, const messages::RawMessage&) {
-      if (f.run_id == kRunId && f.step == current_) have_feedback_ = true;
+    messages::subscribe_message<force_feedback_t>(lcm_, ch_.force_feedback(), fb_, [this](force_feedback_t& f, const messages::RawMessage& raw) {
+      // As LcmSubstructure: signed under the run key and bound to the outstanding command.
+      if (f.run_id == kRunId && f.step == current_ && f.command_sequence == command_.sequence && !have_feedback_) {
+        EXPECT_TRUE(auth_.verify(raw)) << "reply for step " << f.step << " does not verify";
+        have_feedback_ = true;
+      }
     });
     next_start_ = lcm_.now();
   }
@@ -96,7 +101,8 @@ class SimServer : public messages::LoopActor {
         start.command = hybrid_lcm::run_control_t::COMMAND_START;
         start.num_dampers = 1;
         start.dt_s = kDt;
-        messages::publish_message(lcm_, ch_.run_control(), start, buffer_);
+        start.sequence = ++sequence_;
+        auth_.publish(lcm_, ch_.run_control(), start, buffer_);
         next_start_ = now + 100ms;
       }
       return;
@@ -154,7 +160,8 @@ class SimServer : public messages::LoopActor {
     command_.actuator_targets_valid = 0;  // hold x'
     command_.actuator1_target_in = {0.0};
     command_.actuator2_target_in = {0.0};
-    messages::publish_message(lcm_, ch_.drift_command(), command_, buffer_);
+    command_.sequence = ++sequence_;
+    auth_.publish(lcm_, ch_.drift_command(), command_, buffer_);
     sent_at_ = now;
   }
   void control(int8_t command, const std::string& reason) {
@@ -165,7 +172,8 @@ class SimServer : public messages::LoopActor {
     m.num_dampers = 1;
     m.dt_s = 0.0;
     m.reason = reason;
-    messages::publish_message(lcm_, ch_.run_control(), m, buffer_);
+    m.sequence = ++sequence_;
+    auth_.publish(lcm_, ch_.run_control(), m, buffer_);
   }
 
   messages::LcmInterface& lcm_;
@@ -175,6 +183,8 @@ class SimServer : public messages::LoopActor {
   force_feedback_t fb_;
   hybrid_lcm::drift_command_t command_;
   std::vector<uint8_t> buffer_;
+  messages::MessageAuth auth_{fixed_key()};
+  int64_t sequence_ = 0;
   bool ready_ = false, have_feedback_ = false, done_ = false, silent_ = false;
   int64_t current_ = -1;
   TimePoint next_start_{}, sent_at_{};

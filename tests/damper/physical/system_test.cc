@@ -9,7 +9,7 @@
 //  - Forged, replayed and stale commands are rejected by a running brfd-rig, which says so.
 //  - The same config runs virtual and physical by changing one key.
 #include "damper/physical/command_auth.h"
-#include "damper/physical/run_key.h"
+#include "messages/run_key.h"
 #include "hybrid_lcm/actuator_command_t.hpp"
 #include "hybrid_lcm/sensor_frame_t.hpp"
 #include "messages/lcm_bus.h"
@@ -343,7 +343,8 @@ TEST(PhysicalSystem, ServerGoesSilentAndTheSubstructureTripsOnItsCommandWatchdog
   c.damper.executable = bin("brfd-substructure");
   c.rig.rig.executable = bin("brfd-rig");
   const std::string run_id = "silent-server";
-  damper::physical::write_key_file(server::physical_key_path(c, out), damper::physical::generate_run_key());
+  const damper::physical::RunKey run_key = damper::physical::generate_run_key();
+  damper::physical::write_key_file(server::run_key_path(c, out), run_key);
   server::ChildProcess rig = server::spawn_rig(c, out, run_id, out + "/rig.log");
   server::ChildProcess sub = server::spawn_substructure(c, out, run_id, out + "/substructure.log");
   server::LcmLinkSettings link;
@@ -351,6 +352,7 @@ TEST(PhysicalSystem, ServerGoesSilentAndTheSubstructureTripsOnItsCommandWatchdog
   link.channels.prefix = c.transport.channel_prefix;
   link.step_timeout_s = 0.5;
   link.start_timeout_s = 10.0;
+  link.key = run_key;
   server::LcmSubstructure lcm(link);
   lcm.start(run_id, 1, c.dt_s);
   server::SubstructureReply reply{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), Eigen::MatrixX2d::Zero(1, 2)};

@@ -534,6 +534,9 @@ void run_intruder(std::atomic<bool>& stop, std::atomic<long>& answered) {
       fb.actuator1_position_in = cmd.actuator1_target_in;
       fb.actuator2_position_in = cmd.actuator2_target_in;
       fb.status = hybrid_lcm::force_feedback_t::STATUS_OK;
+      fb.sequence = cmd.sequence;
+      fb.command_sequence = cmd.sequence;
+      fb.hmac_length = 0;  // unsigned: it has no run key
       lc->publish(ch.force_feedback(), &fb);
       const long n = ++*answered;
       if (n % 16 == 0) {  // not every step: LCM drops a burst beyond a subscription's queue
@@ -551,6 +554,8 @@ void run_intruder(std::atomic<bool>& stop, std::atomic<long>& answered) {
         rc.num_dampers = 1;
         rc.dt_s = 0.001;
         rc.reason = "intruder";
+        rc.sequence = n;
+        rc.hmac_length = 0;
         lc->publish(ch.run_control(), &rc);
         hybrid_lcm::heartbeat_t hb;
         hb.utime = messages::now_utime();
@@ -558,6 +563,7 @@ void run_intruder(std::atomic<bool>& stop, std::atomic<long>& answered) {
         hb.sender = "intruder";
         hb.sequence = n;
         hb.state = hybrid_lcm::heartbeat_t::STATE_FAULT;
+        hb.hmac_length = 0;
         lc->publish(ch.heartbeat(), &hb);
       }
     }

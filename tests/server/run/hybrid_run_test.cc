@@ -149,6 +149,7 @@ TEST(Messages, HashMismatchIsAnErrorNamingTheChannel) {
   hybrid_lcm::heartbeat_t hb;
   hb.run_id = "x";
   hb.sender = "test";
+  hb.hmac_length = 0;
   std::vector<uint8_t> bytes(static_cast<std::size_t>(hb.getEncodedSize()));
   hb.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   const std::string channel = "BRFD_FORCE_FEEDBACK";

@@ -129,6 +129,32 @@ TEST(RunConfig, LcmTransportNeedsAUrl) {
   EXPECT_NE(err.find("transport.url"), std::string::npos) << err;
 }
 
+TEST(RunConfig, BadMessagePolicyAndRunKeyRulesAreStrict) {
+  const std::string text = three_story_text();
+  auto with_transport = [&](const std::string& extra) {
+    return std::regex_replace(text, std::regex("(\n  url: \"[^\"]*\"\n)"), "$1" + extra);
+  };
+  // Default drop; stop accepted; anything else refused naming the key.
+  const std::string ok_path = test_support::fresh_temp_dir("cfg") + "/ok.yaml";
+  auto with_policy = [&](const std::string& policy) {
+    return std::regex_replace(text, std::regex("  on_bad_message: drop"), "  on_bad_message: " + policy);
+  };
+  test_support::write_text(ok_path, with_policy("stop"));
+  EXPECT_EQ(server::load_run_config(ok_path).transport.on_bad_message, "stop");
+  EXPECT_EQ(server::load_run_config(test_paths::source_dir() + "/configs/three-story.yaml").transport.on_bad_message,
+            "drop");
+  std::string err = load_error(with_policy("ignore"));
+  EXPECT_NE(err.find("transport.on_bad_message"), std::string::npos) << err;
+  EXPECT_NE(err.find("ignore"), std::string::npos) << err;
+  // A substructure started by hand must be given the run's key.
+  err = load_error(std::regex_replace(text, std::regex("  launch: spawn "), "  launch: external "));
+  EXPECT_NE(err.find("transport.key_file"), std::string::npos) << err;
+  EXPECT_NE(err.find("damper.launch is external"), std::string::npos) << err;
+  err = load_error(with_transport("  key_file: /nonexistent/run.key\n"));
+  EXPECT_NE(err.find("transport.key_file"), std::string::npos) << err;
+  EXPECT_NE(err.find("/nonexistent/run.key"), std::string::npos) << err;
+}
+
 TEST(RunConfig, EffectiveConfigLoadsBackToTheSameRun) {
   const server::RunConfig a = server::load_run_config(test_paths::source_dir() + "/configs/three-story.yaml");
   const std::string path = test_support::fresh_temp_dir("eff") + "/effective.yaml";

@@ -1,12 +1,12 @@
 #pragma once
 /// @file run_key.h
-/// The per-run HMAC key of the actuator commands (docs/physical.md, "Command
+/// The per-run HMAC key of every LCM message of a run (docs/physical.md, "Message
 /// authentication"): 32 random bytes, stored as 64 lowercase hex characters and a newline in
 /// a file with permissions 0600. `hybridsim run` writes a fresh one to <results>/run.key for
-/// a local rig emulator; a lab gives its own with `rig.key_file`.
-///
-/// Header-only (no libsodium here): the server writes keys without linking the physical
-/// substructure library; the key comes from the kernel's CSPRNG (getrandom).
+/// every LCM run and hands its path to brfd-substructure and brfd-rig (--key-file: the path,
+/// never the key, is on their command line); a lab gives its own with `rig.key_file`, an
+/// external substructure with `transport.key_file`. The key comes from the kernel's CSPRNG
+/// (getrandom); signing and verifying are in message_auth.h.
 
 #include <fcntl.h>
 #include <sys/random.h>
@@ -23,7 +23,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace damper::physical {
+namespace messages {
 
 using RunKey = std::array<uint8_t, 32>;
 
@@ -104,4 +104,4 @@ inline RunKey read_key_file(const std::string& path) {
   return key;
 }
 
-}  // namespace damper::physical
+}  // namespace messages
