@@ -492,6 +492,18 @@ std::string format_summary(const RunSummary& s) {
   o << "status: " << s.status << (s.error.empty() ? "" : " (" + s.error + ")") << "\n";
   o << "steps: " << s.steps << "  simulated: " << s.sim_time_s << " s  wall: " << s.wall_s << " s\n";
   if (!s.integrator.empty()) o << "integrator: " << s.integrator << "\n";
+  for (const auto& [who, kinds] : s.bad_messages) {
+    long n = 0;
+    for (const auto& kv : kinds) n += kv.second;
+    if (n == 0) continue;
+    o << "bad messages dropped by " << who << ": " << n << " (";
+    const char* sep = "";
+    for (const auto& [kind, k] : kinds) {
+      o << sep << kind << " " << k;
+      sep = ", ";
+    }
+    o << ")\n";
+  }
   if (!s.resampling.text.empty()) o << "record: " << s.resampling.text << "\n";
   o << "PGA: " << s.pga_g << " g   modal periods (s):";
   for (int i = 0; i < s.modal_periods_s.size(); ++i) o << " " << s.modal_periods_s[i];
