@@ -230,8 +230,8 @@ TEST(MessageAuth, NoSingleBitChangeOfASignedMessageDecodesAndVerifies) {
 }
 
 TEST(MessageAuth, ForgedHugeArrayLengthIsRefusedBeforeDecoding) {
-  // num_dampers = 2^31 - 1 in an unsigned force feedback: LCM's decoder would resize four
-  // arrays to 16 GiB each before noticing the bytes are missing.
+  // num_dampers = 2^31 - 1 in an unsigned force feedback: LCM's generated decoder resizes
+  // force_kip to that length (16 GiB of doubles) before noticing the bytes are missing.
   hybrid_lcm::force_feedback_t f = vector_force_feedback();
   std::vector<uint8_t> b(static_cast<std::size_t>(f.getEncodedSize()));
   f.encode(b.data(), 0, static_cast<int>(b.size()));
