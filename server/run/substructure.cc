@@ -65,6 +65,7 @@ struct LcmSubstructure::Impl {
   int64_t sequence = 0;                     ///< of the messages the server publishes
   int64_t last_feedback_sequence = 0;       ///< of the last reply taken
   std::map<std::string, int64_t> heartbeat_sequence;  ///< last heartbeat taken, per sender
+  long idle_heartbeats = 0;  ///< heartbeats without a run id (a node that took no START)
 
   void log_event(const std::string& channel, const void* data, int size) {
     if (!log) return;
@@ -121,7 +122,10 @@ struct LcmSubstructure::Impl {
     const messages::Received r = messages::check_and_decode(
         m, *auth, [&](const std::string& id) { peeked = id; return id == run_id; }, hb, detail);
     // An idle node before any START has no run id: it belongs to no run yet, nothing to drop.
-    if (r == messages::Received::foreign_run && peeked.empty()) return;
+    if (r == messages::Received::foreign_run && peeked.empty()) {
+      ++idle_heartbeats;
+      return;
+    }
     if (r != messages::Received::ok) return bad->report(std::string("HEARTBEAT/") + messages::to_string(r), detail);
     auto [last, fresh] = heartbeat_sequence.emplace(hb.sender, hb.sequence);
     if (!fresh) {
@@ -207,7 +211,19 @@ void LcmSubstructure::start(const std::string& run_id, int num_dampers, double d
       throw SubstructureError("no heartbeat from the substructure on LCM channel '" +
                               m.settings.channels.heartbeat() + "' within " +
                               std::to_string(m.settings.start_timeout_s) + " s of START on '" +
-                              m.settings.channels.run_control() + "' (URL " + m.settings.url + ")");
+                              m.settings.channels.run_control() + "' (URL " + m.settings.url + ")" +
+                              [&]() -> std::string {
+                                const auto it = m.bad->counts().find("HEARTBEAT/bad_mac");
+                                if (it != m.bad->counts().end())
+                                  return "; " + std::to_string(it->second) +
+                                         " heartbeats of this run failed the HMAC check: does the substructure hold "
+                                         "the run's key (--key-file, transport.key_file)?";
+                                if (m.idle_heartbeats > 0)
+                                  return "; a substructure is listening (" + std::to_string(m.idle_heartbeats) +
+                                         " idle heartbeats) but did not take START: does it hold the run's key "
+                                         "(--key-file, transport.key_file)?";
+                                return "";
+                              }());
     }
   }
 }

@@ -112,7 +112,8 @@ std::map<std::string, std::map<std::string, long>> SubstructureSession::bad_mess
   std::map<std::string, std::map<std::string, long>> out;
   if (lcm_ == nullptr) return out;
   out["hybridsim"] = lcm_->bad_messages().counts();
-  out["brfd-substructure"] = substructure_bad_messages_;
+  // A substructure started by hand keeps its counts in its own log (stderr).
+  if (config_.damper.launch == "spawn") out["brfd-substructure"] = substructure_bad_messages_;
   return out;
 }
 

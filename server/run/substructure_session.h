@@ -55,7 +55,8 @@ class SubstructureSession {
   std::vector<std::string> finish(bool run_ok);
 
   /// Messages dropped on the run's links, by process and kind (summary.json "bad_messages"):
-  /// "hybridsim" (this side) and, after finish(), "brfd-substructure" (its file).
+  /// "hybridsim" (this side) and, after finish(), "brfd-substructure" (its file; a spawned
+  /// substructure only: one started by hand says its counts on its own stderr).
   std::map<std::string, std::map<std::string, long>> bad_messages() const;
 
  private:

@@ -14,6 +14,7 @@
 //  - under transport.on_bad_message: stop one forged reply ends the run, naming it.
 // Counts and logic only: the injector is paced by the run's own commands, never by a timer.
 #include "fault_support.h"
+#include "messages/run_key.h"
 
 #include <gtest/gtest.h>
 
@@ -203,6 +204,31 @@ TEST(Injector, PolicyStopEndsTheRunAtTheFirstForgedReplyNamingIt) {
   EXPECT_NE(s.value("error", "").find("FORCE_FEEDBACK/bad_mac"), std::string::npos) << s.value("error", "");
   EXPECT_LT(s.value("steps", 0L), 2560);
   EXPECT_TRUE(no_orphans(out));
+  fs::remove_all(dir);
+}
+
+TEST(Injector, SubstructureWithAnotherKeyIsRefusedAndTheStartErrorSaysSo) {
+  // An external substructure (damper.launch external) holding another key than the run's:
+  // its heartbeats never count, START never reaches it, and the start error names the key.
+  const std::string dir = test_support::fresh_temp_dir("inject-key");
+  const std::string out = dir + "/out";
+  messages::write_key_file(dir + "/run.key", messages::generate_run_key());
+  messages::write_key_file(dir + "/other.key", messages::generate_run_key());
+  std::string text = config_text(out, 1.0, "lcm");
+  text = std::regex_replace(text, std::regex("  start_timeout_s: 10.0\n"),
+                            "  start_timeout_s: 1.5\n  key_file: " + dir + "/run.key\n");
+  text = std::regex_replace(text, std::regex("damper:\n  mode: virtual\n"), "damper:\n  mode: virtual\n  launch: external\n");
+  const std::string cfg = write_config(dir, "run.yaml", text);
+  fs::create_directories(dir + "/sub");
+  Child sub = start({bin_dir() + "/brfd-substructure", "--model-config", test_paths::source_dir() + "/configs/brfd-default.yaml",
+                     "--url", "udpm://239.255.76.67:7667?ttl=0", "--key-file", dir + "/other.key", "--watchdog-s", "5"},
+                    dir + "/sub");
+  const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
+  kill(sub.pid, SIGTERM);
+  sub.wait();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("does it hold the run's key"), std::string::npos) << r.err;
+  EXPECT_NE(sub.err().find("RUN_CONTROL/bad_mac"), std::string::npos) << sub.err();
   fs::remove_all(dir);
 }
 
