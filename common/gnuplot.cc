@@ -18,13 +18,13 @@ std::string run_gnuplot(const std::string& script_path, const std::string& worki
   const pid_t pid = fork();
   if (pid < 0) return "cannot start gnuplot for " + script_path + ": fork failed";
   if (pid == 0) {
-    if (!working_dir.empty() && chdir(working_dir.c_str()) != 0) _exit(126);
     const int out = open(log_path.empty() ? "/dev/null" : log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (out >= 0) {
       dup2(out, STDOUT_FILENO);
       dup2(out, STDERR_FILENO);
       close(out);
     }
+    if (!working_dir.empty() && chdir(working_dir.c_str()) != 0) _exit(126);
     execlp("gnuplot", "gnuplot", script_path.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }

@@ -42,4 +42,10 @@ std::string format_fixed(double v, int digits) {
   return o.str();
 }
 
+std::string format_significant(double v, int digits) {
+  std::ostringstream o;
+  o << std::setprecision(digits) << v;
+  return o.str();
+}
+
 }  // namespace common

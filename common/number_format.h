@@ -2,7 +2,7 @@
 /// @file number_format.h
 /// Numbers as text for files and messages that people and programs read back: the shortest
 /// text that reads back as the same double (labels, command lines, summaries), and fixed
-/// decimals (timings, percentages).
+/// decimals (timings, percentages), a few significant digits (report tables).
 
 #include <ostream>
 #include <string>
@@ -15,6 +15,10 @@ std::string format_shortest(double v);
 
 /// `v` with `digits` digits after the decimal point (iostream std::fixed).
 std::string format_fixed(double v, int digits);
+
+/// `v` with at most `digits` significant digits (iostream default notation,
+/// std::setprecision(digits)): figures in reports, e.g. 0.1235 or 1.235e+04 for digits = 4.
+std::string format_significant(double v, int digits);
 
 /// Makes `out` print every double as format_shortest() does (the shortest text that reads
 /// back as the same double). The config writers use it, so that what they write, the strict

@@ -1,5 +1,6 @@
 #include "damper/diagnose/diagnose.h"
 
+#include "common/number_format.h"
 #include "damper/model/brfd_config.h"
 #include "damper/diagnose/diagnose_fit.h"
 #include "damper/diagnose/diagnose_report.h"
@@ -21,11 +22,7 @@ namespace damper {
 
 namespace {
 
-std::string fmt(double v, int prec = 4) {
-  std::ostringstream o;
-  o << std::setprecision(prec) << v;
-  return o.str();
-}
+using common::format_significant;
 
 using Log = std::function<void(const std::string&)>;
 
@@ -82,15 +79,15 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
     double window_rmse = 0.0;
     const BrfdParams base = record_base(r, model, o, &window_rmse);
     if (o.base == BaseSource::identify)
-      log(r.test.name() + ": base LuGre identified on the passive window 0-" + fmt(t_passive) + " s (residual there " +
-          fmt(window_rmse) + " kip RMSE)");
+      log(r.test.name() + ": base LuGre identified on the passive window 0-" + format_significant(t_passive, 4) + " s (residual there " +
+          format_significant(window_rmse, 4) + " kip RMSE)");
     double train_s = 0.0, held_s = 0.0;
     for (std::uint8_t t : r.seg.train) (t ? train_s : held_s) += r.test.dt_s;
     std::ostringstream sp;
-    sp << r.test.name() << ": " << r.test.size() << " samples at " << fmt(1.0 / r.test.dt_s) << " Hz, passive window 0-"
-       << fmt(t_passive) << " s" << (r.seg.actuated ? " (before the first actuator motion)" : " (actuators never move)")
+    sp << r.test.name() << ": " << r.test.size() << " samples at " << format_significant(1.0 / r.test.dt_s, 4) << " Hz, passive window 0-"
+       << format_significant(t_passive, 4) << " s" << (r.seg.actuated ? " (before the first actuator motion)" : " (actuators never move)")
        << ", " << r.seg.reversals.size() << " reversals, rest from "
-       << (r.seg.rest_begin < r.test.size() ? fmt(r.test.time_s[r.seg.rest_begin]) + " s" : std::string("- (none)"));
+       << (r.seg.rest_begin < r.test.size() ? format_significant(r.test.time_s[r.seg.rest_begin], 4) + " s" : std::string("- (none)"));
     log(sp.str());
     BrfdParams b = base;
     b.effects = ModelEffects{};
@@ -257,8 +254,8 @@ void final_gap(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model,
     result.nrmse_after_max = max_after;
     if (result.added.empty() || result.nrmse_after_mean <= result.nrmse_before_mean) break;
     const std::string dropped = result.added.back();
-    const std::string note = "dropped " + dropped + ": with it the mean NRMSE (" + fmt(result.nrmse_after_mean) +
-                             ") exceeds the model's before (" + fmt(result.nrmse_before_mean) + "); the gap never grows";
+    const std::string note = "dropped " + dropped + ": with it the mean NRMSE (" + format_significant(result.nrmse_after_mean, 4) +
+                             ") exceeds the model's before (" + format_significant(result.nrmse_before_mean, 4) + "); the gap never grows";
     log(note);
     result.notes.push_back(note);
     effect_spec(dropped).remove(effects);

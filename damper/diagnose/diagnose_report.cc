@@ -1,11 +1,12 @@
 #include "damper/diagnose/diagnose_report.h"
 
+#include "common/gnuplot.h"
+#include "common/number_format.h"
 #include "damper/model/brfd_config.h"
 #include "damper/model/effects.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -18,28 +19,14 @@ namespace damper {
 
 namespace {
 
-std::string fmt(double v, int prec = 4) {
-  std::ostringstream o;
-  o << std::setprecision(prec) << v;
-  return o.str();
-}
-
-std::string fixed(double v, int decimals) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(decimals) << v;
-  return o.str();
-}
+using common::format_significant;
+using common::format_fixed;
+using common::gnuplot_quote;
 
 std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
 std::string lpad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
 
-std::string pct(double share) { return fixed(100.0 * share, 1) + "%"; }
-
-std::string gp_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += (c == '\'') ? std::string("''") : std::string(1, c);
-  return o + "'";
-}
+std::string pct(double share) { return format_fixed(100.0 * share, 1) + "%"; }
 
 int color_int(Regime r) { return std::stoi(regime_color(r).substr(1), nullptr, 16); }
 
@@ -57,10 +44,10 @@ std::string plot_record(const RecordReport& r, const std::string& csv, const std
     std::ofstream gp(gp_path);
     if (!gp) return "cannot write " + gp_path;
     gp << "set terminal pngcairo noenhanced size 1300,1150 font ',10'\n"
-       << "set output " << gp_quote(png) << "\n"
+       << "set output " << gnuplot_quote(png) << "\n"
        << "set datafile separator ','\nset grid\nset key top right opaque\n"
-       << "set multiplot title " << gp_quote(r.name + ": effects added: " + added + "   NRMSE before " +
-                                             fmt(r.before.nrmse_std, 3) + ", after " + fmt(r.after.nrmse_std, 3))
+       << "set multiplot title " << gnuplot_quote(r.name + ": effects added: " + added + "   NRMSE before " +
+                                             format_significant(r.before.nrmse_std, 3) + ", after " + format_significant(r.after.nrmse_std, 3))
        << "\n";
     // Regime shading (time panels).
     const Segmentation& s = r.segmentation;
@@ -84,7 +71,7 @@ std::string plot_record(const RecordReport& r, const std::string& csv, const std
     std::ostringstream legend;
     double x = 0.01;
     for (Regime g : {Regime::reversal, Regime::sticking, Regime::actuators, Regime::after_stop}) {
-      legend << "set label " << (100 + static_cast<int>(g)) << " " << gp_quote(to_string(g)) << " at graph " << x
+      legend << "set label " << (100 + static_cast<int>(g)) << " " << gnuplot_quote(to_string(g)) << " at graph " << x
              << ", graph 0.93 textcolor rgb '" << regime_color(g) << "' font ',10'\n";
       x += 0.09;
     }
@@ -92,31 +79,28 @@ std::string plot_record(const RecordReport& r, const std::string& csv, const std
     gp << "set size 1,0.36\nset origin 0,0.62\n"
        << shade.str() << legend.str()
        << "set xlabel 'time (s)'\nset ylabel 'damper force (kip)'\n"
-       << "plot " << gp_quote(csv) << " u 1:6 w l lw 1.4 lc rgb '#000000' t 'measured', "
+       << "plot " << gnuplot_quote(csv) << " u 1:6 w l lw 1.4 lc rgb '#000000' t 'measured', "
        << "'' u 1:7 w l lw 1.2 lc rgb '#d62728' t 'model before', "
        << "'' u 1:8 w l lw 1.2 lc rgb '#1f77b4' t 'model after'\n"
        << "unset label\n"
        << "set size 1,0.26\nset origin 0,0.36\n"
        << "set ylabel 'residual, model - measured (kip)'\n"
-       << "plot " << gp_quote(csv) << " u 1:9 w l lw 1 lc rgb '#d62728' t 'before', "
+       << "plot " << gnuplot_quote(csv) << " u 1:9 w l lw 1 lc rgb '#d62728' t 'before', "
        << "'' u 1:10 w l lw 1 lc rgb '#1f77b4' t 'after'\n";
     for (int k = 1; k < obj; ++k) gp << "unset object " << k << "\n";
     gp << "set size 0.5,0.36\nset origin 0,0\n"
        << "set xlabel 'drum displacement (in)'\nset ylabel 'damper force (kip)'\n"
        << "set title 'loops: large residuals (before) coloured by regime' font ',10'\n"
-       << "plot " << gp_quote(csv) << " u 2:6 w l lw 1 lc rgb '#999999' t 'measured', "
+       << "plot " << gnuplot_quote(csv) << " u 2:6 w l lw 1 lc rgb '#999999' t 'measured', "
        << "'' u 2:7 w l lw 0.8 lc rgb '#d62728' t 'model before', "
        << "'' u 2:($13 > 0 ? $6 : 1/0):14 w p pt 7 ps 0.35 lc rgb variable t 'large residual'\n"
        << "set size 0.5,0.36\nset origin 0.5,0\n"
        << "set title 'loops after' font ',10'\n"
-       << "plot " << gp_quote(csv) << " u 2:6 w l lw 1 lc rgb '#999999' t 'measured', "
+       << "plot " << gnuplot_quote(csv) << " u 2:6 w l lw 1 lc rgb '#999999' t 'measured', "
        << "'' u 2:8 w l lw 0.8 lc rgb '#1f77b4' t 'model after'\n"
        << "unset multiplot\n";
   }
-  const std::string cmd = "gnuplot " + gp_quote(gp_path) + " > /dev/null 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit status " + std::to_string(rc) + ") on " + gp_path;
-  return "";
+  return common::run_gnuplot(gp_path);
 }
 
 std::string plot_gap(const std::string& csv, const std::string& png) {
@@ -125,18 +109,15 @@ std::string plot_gap(const std::string& csv, const std::string& png) {
     std::ofstream gp(gp_path);
     if (!gp) return "cannot write " + gp_path;
     gp << "set terminal pngcairo noenhanced size 900,500 font ',10'\n"
-       << "set output " << gp_quote(png) << "\n"
+       << "set output " << gnuplot_quote(png) << "\n"
        << "set datafile separator ','\nset grid ytics\nset key top right autotitle columnhead\n"
        << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
        << "set boxwidth 0.9\nset yrange [0:*]\nset xtics rotate by -25 noenhanced\n"
        << "set ylabel 'NRMSE (RMSE / std of measured force)'\n"
        << "set title 'model vs measured, whole records: before and after the added effects'\n"
-       << "plot " << gp_quote(csv) << " u 2:xtic(1) lc rgb '#d62728' t 'before', '' u 3 lc rgb '#1f77b4' t 'after'\n";
+       << "plot " << gnuplot_quote(csv) << " u 2:xtic(1) lc rgb '#d62728' t 'before', '' u 3 lc rgb '#1f77b4' t 'after'\n";
   }
-  const std::string cmd = "gnuplot " + gp_quote(gp_path) + " > /dev/null 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit status " + std::to_string(rc) + ") on " + gp_path;
-  return "";
+  return common::run_gnuplot(gp_path);
 }
 
 }  // namespace
@@ -167,10 +148,10 @@ std::vector<std::string> format_regime_table(const std::vector<RecordReport>& re
         rg == Regime::chatter ? 1.0 : (time_samples ? static_cast<double>(all.samples[g]) / static_cast<double>(time_samples) : 0.0);
     const double rms = all.samples[g] ? std::sqrt(all.energy[g] / static_cast<double>(all.samples[g])) : 0.0;
     std::string l = pad(to_string(rg), 11) + pad(describe(rg), 34) + lpad(rg == Regime::chatter ? "all" : pct(time_share), 7) +
-                    lpad(total > 0 ? pct(all.energy[g] / total) : "-", 8) + lpad(fixed(rms, 3), 9);
+                    lpad(total > 0 ? pct(all.energy[g] / total) : "-", 8) + lpad(format_fixed(rms, 3), 9);
     for (const RecordReport& r : records) {
       const double t = r.energy_before.total();
-      l += lpad(t > 0 ? fixed(100.0 * r.energy_before.energy[g] / t, 0) + "%" : "-", 7);
+      l += lpad(t > 0 ? format_fixed(100.0 * r.energy_before.energy[g] / t, 0) + "%" : "-", 7);
     }
     out.push_back(l);
   }
@@ -184,7 +165,7 @@ std::vector<std::string> format_regime_table(const std::vector<RecordReport>& re
 std::vector<std::string> format_windows(const std::vector<ResidualWindow>& w, double total) {
   std::vector<std::string> out;
   for (const ResidualWindow& x : w) {
-    out.push_back("  " + pad(x.test, 28) + lpad(fixed(x.t0_s, 2), 7) + " - " + pad(fixed(x.t1_s, 2) + " s", 9) +
+    out.push_back("  " + pad(x.test, 28) + lpad(format_fixed(x.t0_s, 2), 7) + " - " + pad(format_fixed(x.t1_s, 2) + " s", 9) +
                   pad(to_string(x.regime), 11) + lpad(total > 0 ? pct(x.energy / total) : "-", 7) + " of the residual energy");
   }
   return out;
@@ -216,13 +197,13 @@ std::vector<std::string> format_candidate_table(const std::vector<CandidateScore
                 lpad("excess", 8) + lpad("parts", 7) + lpad("own", 6) + lpad("conf", 6) + "  verdict");
   for (const CandidateScore& c : scores) {
     std::string params;
-    for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? " " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 3);
+    for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? " " : "") + c.parameter_names[j] + "=" + format_significant(c.theta[j], 3);
     if (c.theta.empty()) params = "(null)";
     out.push_back("  " + pad(c.effect, 17) + pad(params, 62) +
-                  lpad(fixed(c.heldout_rmse_null_kip, 4) + "->" + fixed(c.heldout_rmse_kip, 4), 16) +
-                  lpad(fixed(100.0 * c.heldout_gain, 1) + "%", 7) + lpad(fixed(100.0 * c.excess_share, 0) + "%", 8) +
+                  lpad(format_fixed(c.heldout_rmse_null_kip, 4) + "->" + format_fixed(c.heldout_rmse_kip, 4), 16) +
+                  lpad(format_fixed(100.0 * c.heldout_gain, 1) + "%", 7) + lpad(format_fixed(100.0 * c.excess_share, 0) + "%", 8) +
                   lpad(std::to_string(c.parts_improved) + "/" + std::to_string(c.parts_changed), 7) +
-                  lpad(fixed(100.0 * c.signature_share, 0) + "%", 6) + lpad(fixed(100.0 * c.confidence, 0) + "%", 6) + "  " +
+                  lpad(format_fixed(100.0 * c.signature_share, 0) + "%", 6) + lpad(format_fixed(100.0 * c.confidence, 0) + "%", 6) + "  " +
                   (c.accepted ? "ADDED" : c.verdict));
   }
   out.push_back("  (held-out RMSE: refitted model without -> with the candidate, same procedure and budget; gain: share of "
@@ -234,15 +215,15 @@ std::vector<std::string> format_candidate_table(const std::vector<CandidateScore
 std::string format_evidence(const CandidateScore& c) {
   std::ostringstream o;
   std::string params;
-  for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? ", " : "") + c.parameter_names[j] + "=" + fmt(c.theta[j], 4);
-  o << "added " << c.effect << " (" << params << "): held-out RMSE " << fixed(c.heldout_rmse_null_kip, 4) << " -> "
-    << fixed(c.heldout_rmse_kip, 4) << " kip (" << fixed(100.0 * c.heldout_gain, 1) << "% of the mean square, "
-    << fixed(100.0 * c.excess_share, 0) << "% of the excess over noise), better on " << c.parts_improved << " of the "
-    << c.parts_changed << " held-out parts it changes, " << fixed(100.0 * c.signature_share, 0)
+  for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? ", " : "") + c.parameter_names[j] + "=" + format_significant(c.theta[j], 4);
+  o << "added " << c.effect << " (" << params << "): held-out RMSE " << format_fixed(c.heldout_rmse_null_kip, 4) << " -> "
+    << format_fixed(c.heldout_rmse_kip, 4) << " kip (" << format_fixed(100.0 * c.heldout_gain, 1) << "% of the mean square, "
+    << format_fixed(100.0 * c.excess_share, 0) << "% of the excess over noise), better on " << c.parts_improved << " of the "
+    << c.parts_changed << " held-out parts it changes, " << format_fixed(100.0 * c.signature_share, 0)
     << "% of the gain in its own regimes (" ;
   const EffectSpec& spec = effect_spec(c.effect);
   for (std::size_t k = 0; k < spec.regimes.size(); ++k) o << (k ? "/" : "") << spec.regimes[k];
-  o << "), chosen in " << fixed(100.0 * c.confidence, 0) << "% of bootstrap resamples";
+  o << "), chosen in " << format_fixed(100.0 * c.confidence, 0) << "% of bootstrap resamples";
   return o.str();
 }
 
@@ -252,10 +233,10 @@ std::vector<std::string> format_gap_table(const std::vector<RecordReport>& recor
                 lpad("after", 8) + lpad("held-out NRMSE", 15) + lpad("after", 8) + lpad("updated.yaml", 13));
   double sb = 0, sa = 0, rb = 0, ra = 0, hb = 0, ha = 0, u = 0;
   for (const RecordReport& r : records) {
-    out.push_back("  " + pad(r.name, 28) + lpad(fixed(r.before.nrmse_std, 4), 13) + lpad(fixed(r.after.nrmse_std, 4), 8) +
-                  lpad(fixed(r.before.rmse_kip, 4), 12) + lpad(fixed(r.after.rmse_kip, 4), 8) +
-                  lpad(fixed(r.before_heldout.nrmse_std, 4), 15) + lpad(fixed(r.after_heldout.nrmse_std, 4), 8) +
-                  lpad(fixed(r.updated_config.nrmse_std, 4), 13));
+    out.push_back("  " + pad(r.name, 28) + lpad(format_fixed(r.before.nrmse_std, 4), 13) + lpad(format_fixed(r.after.nrmse_std, 4), 8) +
+                  lpad(format_fixed(r.before.rmse_kip, 4), 12) + lpad(format_fixed(r.after.rmse_kip, 4), 8) +
+                  lpad(format_fixed(r.before_heldout.nrmse_std, 4), 15) + lpad(format_fixed(r.after_heldout.nrmse_std, 4), 8) +
+                  lpad(format_fixed(r.updated_config.nrmse_std, 4), 13));
     sb += r.before.nrmse_std;
     sa += r.after.nrmse_std;
     rb += r.before.rmse_kip;
@@ -265,8 +246,8 @@ std::vector<std::string> format_gap_table(const std::vector<RecordReport>& recor
     u += r.updated_config.nrmse_std;
   }
   const double n = static_cast<double>(records.size());
-  out.push_back("  " + pad("mean", 28) + lpad(fixed(sb / n, 4), 13) + lpad(fixed(sa / n, 4), 8) + lpad(fixed(rb / n, 4), 12) +
-                lpad(fixed(ra / n, 4), 8) + lpad(fixed(hb / n, 4), 15) + lpad(fixed(ha / n, 4), 8) + lpad(fixed(u / n, 4), 13));
+  out.push_back("  " + pad("mean", 28) + lpad(format_fixed(sb / n, 4), 13) + lpad(format_fixed(sa / n, 4), 8) + lpad(format_fixed(rb / n, 4), 12) +
+                lpad(format_fixed(ra / n, 4), 8) + lpad(format_fixed(hb / n, 4), 15) + lpad(format_fixed(ha / n, 4), 8) + lpad(format_fixed(u / n, 4), 13));
   out.push_back(std::string("  (RMSE in kip; before/after: each record's base") +
                 (identify ? " identified on its own passive window" : " = the --model file") +
                 "; updated.yaml: model-updated.yaml as written, one parameter set for all records)");
@@ -277,10 +258,10 @@ std::vector<std::string> format_regime_shift(const RegimeEnergy& before, const R
   std::vector<std::string> out;
   for (int g = 0; g < kRegimeCount; ++g) {
     const double b = before.energy[g], a = after.energy[g];
-    out.push_back("  " + pad(to_string(static_cast<Regime>(g)), 11) + lpad(fixed(b, 1), 9) + " -> " + lpad(fixed(a, 1), 9) +
-                  " kip^2" + (b > 0 ? "  (" + fixed(100.0 * (a - b) / b, 0) + "%)" : ""));
+    out.push_back("  " + pad(to_string(static_cast<Regime>(g)), 11) + lpad(format_fixed(b, 1), 9) + " -> " + lpad(format_fixed(a, 1), 9) +
+                  " kip^2" + (b > 0 ? "  (" + format_fixed(100.0 * (a - b) / b, 0) + "%)" : ""));
   }
-  out.push_back("  " + pad("total", 11) + lpad(fixed(before.total(), 1), 9) + " -> " + lpad(fixed(after.total(), 1), 9) + " kip^2");
+  out.push_back("  " + pad("total", 11) + lpad(format_fixed(before.total(), 1), 9) + " -> " + lpad(format_fixed(after.total(), 1), 9) + " kip^2");
   return out;
 }
 
@@ -311,13 +292,13 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
         w << std::setprecision(10) << r.passive_end_s;
         const bool passive = !r.segmentation.actuated;
         y << "#   hybridsim damper predict --config model-updated.yaml --test " << r.path
-          << (passive ? " --fit-window 0:" + w.str() : std::string()) << "   # nrmse=" << fixed(r.after.nrmse_std, 4) << "\n";
+          << (passive ? " --fit-window 0:" + w.str() : std::string()) << "   # nrmse=" << format_fixed(r.after.nrmse_std, 4) << "\n";
       }
       y << "# The LuGre block below is one set for all records, identified on their passive windows jointly\n"
         << "# with the effects on (for hybrid runs / --no-fit: NRMSE " ;
       double u = 0.0;
       for (const RecordReport& r : result.records) u += r.updated_config.nrmse_std;
-      y << fixed(u / static_cast<double>(std::max<std::size_t>(1, result.records.size())), 4) << " mean on these records).\n";
+      y << format_fixed(u / static_cast<double>(std::max<std::size_t>(1, result.records.size())), 4) << " mean on these records).\n";
     } else if (o.base == BaseSource::identify) {
       y << "# No effect added: the model as given; bases per record identified as `hybridsim damper predict` does.\n";
     } else {
@@ -373,7 +354,7 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
          "parts_changed,signature_share,confidence,verdict,accepted\n";
     for (const CandidateScore& s : result.candidates) {
       std::string params;
-      for (std::size_t j = 0; j < s.theta.size(); ++j) params += (j ? " " : "") + s.parameter_names[j] + "=" + fmt(s.theta[j], 6);
+      for (std::size_t j = 0; j < s.theta.size(); ++j) params += (j ? " " : "") + s.parameter_names[j] + "=" + format_significant(s.theta[j], 6);
       std::string verdict = s.verdict;
       std::replace(verdict.begin(), verdict.end(), ',', ';');
       c << s.round << ',' << s.effect << ',' << params << ',' << s.heldout_rmse_null_kip << ',' << s.heldout_rmse_kip << ','

@@ -1,5 +1,6 @@
 #include "damper/diagnose/diagnose_select.h"
 
+#include "common/number_format.h"
 #include "damper/diagnose/diagnose_noise.h"
 
 #include <algorithm>
@@ -12,11 +13,7 @@ namespace damper {
 
 namespace {
 
-std::string fmt(double v, int prec = 3) {
-  std::ostringstream o;
-  o << std::setprecision(prec) << v;
-  return o.str();
-}
+using common::format_significant;
 
 // Parts of a record: the spans of its split from sample `from` on (each drum cycle / rest half).
 void add_parts(const DiagnoseRecord& r, std::size_t k, std::size_t from, bool heldout_only, std::vector<HeldOutPart>& parts) {
@@ -140,12 +137,12 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
   const double excess = null_sse - n * sigma2;
   g.excess_share = excess > 0.0 ? g.gain / excess : 0.0;
   if (g.gain_share < o.min_improvement) {
-    g.why = "held-out gain " + fmt(100.0 * g.gain_share, 2) + "% < " + fmt(100.0 * o.min_improvement, 2) + "%";
+    g.why = "held-out gain " + format_significant(100.0 * g.gain_share, 2) + "% < " + format_significant(100.0 * o.min_improvement, 2) + "%";
     return g;
   }
   if (!(excess > 0.0) || g.excess_share < o.min_excess_share) {
-    g.why = "removes " + fmt(100.0 * g.excess_share, 2) + "% of the residual above the noise floor (needs " +
-            fmt(100.0 * o.min_excess_share, 2) + "%)";
+    g.why = "removes " + format_significant(100.0 * g.excess_share, 2) + "% of the residual above the noise floor (needs " +
+            format_significant(100.0 * o.min_excess_share, 2) + "%)";
     return g;
   }
   if (g.changed == 0 || static_cast<double>(g.improved) < o.consistency * static_cast<double>(g.changed)) {
@@ -159,7 +156,7 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
     }
   }
   if (check_signature && c.signature_share < o.signature_share) {
-    g.why = "only " + fmt(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes";
+    g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes";
     return g;
   }
   g.passes = true;
@@ -354,16 +351,16 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     }
     const bool apart = w.confidence >= o.confidence && differ > 0 && better >= o.consistency * differ;
     out.notes.push_back(std::string(apart ? "told apart: " : "cannot tell apart: ") + w.effect + " (held-out gain " +
-                        fmt(100.0 * w.heldout_gain) + "%, chosen in " + fmt(100.0 * w.confidence) + "% of resamples) vs " +
-                        other.effect + " (" + fmt(100.0 * other.heldout_gain) + "%, " + fmt(100.0 * other.confidence) +
+                        format_significant(100.0 * w.heldout_gain, 3) + "%, chosen in " + format_significant(100.0 * w.confidence, 3) + "% of resamples) vs " +
+                        other.effect + " (" + format_significant(100.0 * other.heldout_gain, 3) + "%, " + format_significant(100.0 * other.confidence, 3) +
                         "%): " + w.effect + " is better on " + std::to_string(better) + " of the " + std::to_string(differ) +
                         " held-out parts where they differ; signatures " + regime_list(wspec.regimes) + " " +
-                        fmt(100.0 * w.signature_share) + "% vs " + regime_list(effect_spec(other.effect).regimes) + " " +
-                        fmt(100.0 * other.signature_share) + "%");
+                        format_significant(100.0 * w.signature_share, 3) + "% vs " + regime_list(effect_spec(other.effect).regimes) + " " +
+                        format_significant(100.0 * other.signature_share, 3) + "%");
   }
   if (w.confidence < o.confidence) {
     out.stop_reason = "best candidate " + w.effect + " passes on the held-out parts but is chosen in only " +
-                      fmt(100.0 * w.confidence) + "% of bootstrap resamples (needs " + fmt(100.0 * o.confidence) +
+                      format_significant(100.0 * w.confidence, 3) + "% of bootstrap resamples (needs " + format_significant(100.0 * o.confidence, 3) +
                       "%): not named";
     return out;
   }

@@ -163,7 +163,7 @@ int batch_laws_command(const BatchOptions& o) {
   const char* names[] = {"J1 peak drift ratio", "J2 peak floor acceleration", "J3 peak base shear"};
   for (int k = 0; k < 3; ++k) {
     gp << "set output '../criteria-J" << k + 1 << ".png'\n"
-       << "set title '" << names[k] << " relative to the building without dampers: " << base.name << "'\n"
+       << "set title " << common::gnuplot_quote(std::string(names[k]) + " relative to the building without dampers: " + base.name) << "\n"
        << "set ylabel 'J" << k + 1 << "'\n"
        << "plot for [r=0:" << records.size() - 1 << "] 'criteria.dat' using " << 2 + k
        << "+3*r:xtic(1) title word('" << record_words << "', r+1)\n";
@@ -188,12 +188,12 @@ int batch_laws_command(const BatchOptions& o) {
       }
       env << "\n";
     }
-    gp << "set output '../drift-envelope-" << r.label << ".png'\n"
-       << "set title 'Peak interstory drift, " << r.label << ": " << base.name << " by control law'\n"
+    gp << "set output " << common::gnuplot_quote("../drift-envelope-" + r.label + ".png") << "\n"
+       << "set title " << common::gnuplot_quote("Peak interstory drift, " + r.label + ": " + base.name + " by control law") << "\n"
        << "set xlabel 'peak interstory drift (in)'\nset ylabel 'story'\nset ytics 1\nset yrange [0:" << stories
        << "]\nset xrange [0:*]\n"
-       << "plot for [l=1:" << laws.size() << "] 'drift-" << r.label
-       << ".dat' using (column(l+1)):1 with linespoints lw 2 pt 7 title word('";
+       << "plot for [l=1:" << laws.size() << "] " << common::gnuplot_quote("drift-" + r.label + ".dat")
+       << " using (column(l+1)):1 with linespoints lw 2 pt 7 title word('";
     for (std::size_t l = 0; l < laws.size(); ++l) gp << (l ? " " : "") << laws[l];
     gp << "', l)\n";
   }

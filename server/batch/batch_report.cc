@@ -1,10 +1,10 @@
 #include "server/batch/batch_report.h"
 
+#include "common/gnuplot.h"
 #include "common/number_format.h"
 #include "server/batch/batch_files.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -13,8 +13,6 @@ namespace server::batch_internal {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-namespace {
 
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
@@ -25,8 +23,6 @@ std::string csv_field(const std::string& s) {
   }
   return q + "\"";
 }
-
-}  // namespace
 
 std::string summary_csv(const BatchSet& b, const std::vector<RunResult>& results) {
   std::ostringstream o;
@@ -105,7 +101,7 @@ std::string make_plots(const std::string& out, const BatchSet& b, const std::vec
      << "set grid\n"
      << "set key outside right\n"
      << "set output '../drift-envelope.png'\n"
-     << "set title 'Peak interstory drift envelope: " << b.name << ", " << blocks << " records'\n"
+     << "set title " << common::gnuplot_quote("Peak interstory drift envelope: " + b.name + ", " + std::to_string(blocks) + " records") << "\n"
      << "set xlabel 'peak interstory drift (in)'\nset ylabel 'story'\n"
      << "set ytics 1\nset yrange [0:" << b.stories << "]\nset xrange [0:*]\n"
      << "plot for [i=0:" << blocks - 1
@@ -113,15 +109,12 @@ std::string make_plots(const std::string& out, const BatchSet& b, const std::vec
      << "     'drift-envelope-stats.dat' using 2:1 with linespoints lw 3 lc rgb '#1f77b4' pt 7 title 'mean', \\\n"
      << "     'drift-envelope-stats.dat' using 3:1 with linespoints lw 3 lc rgb '#d62728' pt 5 title 'max'\n"
      << "set output '../drift-vs-pga.png'\n"
-     << "set title 'Peak interstory drift vs PGA: " << b.name << "'\n"
+     << "set title " << common::gnuplot_quote("Peak interstory drift vs PGA: " + b.name) << "\n"
      << "set xlabel 'PGA (g)'\nset ylabel 'peak interstory drift (in)'\n"
      << "set autoscale\nset ytics auto\nset xrange [0:*]\nset yrange [0:*]\n"
      << "plot for [s=1:" << b.stories << "] 'drift-vs-pga.dat' using 1:(column(s+1)) with points pt 7 ps 1.3 title sprintf('story %d', s)\n";
   gp.close();
-  const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp > gnuplot.log 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit " + std::to_string(rc) + "): see " + (dir / "gnuplot.log").string();
-  return "";
+  return common::run_gnuplot(fs::absolute(dir / "plots.gp").string(), dir.string(), (dir / "gnuplot.log").string());
 }
 
 Counts count(const std::vector<RunResult>& results) {

@@ -14,6 +14,10 @@ struct Counts {
   int records = 0, ok = 0, failed = 0, not_run = 0;
 };
 
+/// `s` as one CSV field (RFC 4180): quoted when it holds a comma, quote or line break, inner
+/// quotes doubled, line breaks turned into spaces (one record per line).
+std::string csv_field(const std::string& s);
+
 Counts count(const std::vector<RunResult>& results);
 
 /// summary.csv: one row per record of the set, in set order.

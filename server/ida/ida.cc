@@ -1,8 +1,10 @@
 #include "server/ida/ida.h"
 
+#include "common/gnuplot.h"
 #include "common/number_format.h"
 #include "server/batch/batch.h"
 #include "server/batch/batch_files.h"
+#include "server/batch/batch_report.h"
 #include "server/batch/batch_set.h"
 #include "server/batch/driver.h"
 #include "server/batch/progress.h"
@@ -39,6 +41,7 @@ using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 using common::format_fixed;
 using common::format_shortest;
+using common::gnuplot_quote;
 namespace bi = server::batch_internal;
 
 namespace {
@@ -179,16 +182,6 @@ std::vector<TracePoint> points(const std::vector<RunInfo>& runs) {
   return p;
 }
 
-std::string csv_text(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return q + "\"";
-}
-
 std::string num(double v) { return std::isfinite(v) ? format_shortest(v) : (std::isnan(v) ? "" : "inf"); }
 
 struct Outputs {
@@ -226,9 +219,9 @@ Outputs write_results(const std::string& out, const IdaSet& s,
       for (const RunInfo& run : v) {
         ++o.runs;
         if (run.status != "ok") ++o.failed;
-        rows << k.def.label << "," << csv_text(s.records[r].rec.label) << "," << num(run.im) << ","
+        rows << k.def.label << "," << bi::csv_field(s.records[r].rec.label) << "," << num(run.im) << ","
              << num(run.scale) << "," << num(run.point.drift_ratio) << "," << (run.point.collapse ? 1 : 0) << ","
-             << run.status << "," << run.label << "," << csv_text(run.error) << "\n";
+             << run.status << "," << run.label << "," << bi::csv_field(run.error) << "\n";
       }
       const std::vector<TracePoint> p = points(v);
       traced.push_back(p);
@@ -273,7 +266,7 @@ Outputs write_results(const std::string& out, const IdaSet& s,
         if (!s.records[r].error.empty() || runs[{static_cast<int>(c), static_cast<int>(r)}].empty()) continue;
         const Capacity cap = capacity_at(traced[ti++], limit_pct / 100.0);
         (cap.reached ? reached : censored).push_back(cap.im);
-        caps << k.def.label << "," << num(limit_pct) << "," << csv_text(s.records[r].rec.label) << "," << num(cap.im)
+        caps << k.def.label << "," << num(limit_pct) << "," << bi::csv_field(s.records[r].rec.label) << "," << num(cap.im)
              << "," << (cap.reached ? 1 : 0) << "\n";
       }
       const LognormalFit f = fit_lognormal_fragility(reached, censored);
@@ -282,7 +275,7 @@ Outputs write_results(const std::string& out, const IdaSet& s,
            << "," << (f.ok ? num(f.beta) : "") << "," << (f.ok ? num(f.median_lo) : "") << ","
            << (f.ok ? num(f.median_hi) : "") << "," << (f.ok ? num(f.beta_lo) : "") << ","
            << (f.ok ? num(f.beta_hi) : "") << "," << f.exceeded << "," << f.censored << ",\"" << kFragilityMethod
-           << "\"," << csv_text(f.note) << "\n";
+           << "\"," << bi::csv_field(f.note) << "\n";
       std::ostringstream line;
       line << k.def.label << ": drift " << format_shortest(limit_pct) << " %: ";
       if (f.ok)
@@ -315,37 +308,40 @@ Outputs write_results(const std::string& out, const IdaSet& s,
   gp << "# gnuplot script written by hybridsim ida; run from " << plots.string() << "\n"
      << "set terminal pngcairo size " << 520 * s.cases.size() + 120 << ",620 noenhanced\n"
      << "set output '../ida-curves.png'\n"
-     << "set multiplot layout 1," << s.cases.size() << " title 'IDA curves: " << cfg.name << "'\n"
+     << "set multiplot layout 1," << s.cases.size() << " title " << gnuplot_quote("IDA curves: " + cfg.name) << "\n"
      << "set grid\nset key top left\n"
-     << "set xlabel 'peak interstory drift ratio (%)'\nset ylabel '" << im_name << "'\n"
+     << "set xlabel 'peak interstory drift ratio (%)'\nset ylabel " << gnuplot_quote(im_name) << "\n"
      << "set xrange [0:" << format_shortest(cfg.collapse_drift_pct * 1.05) << "]\nset yrange [0:*]\n";
   for (const CaseInfo& k : s.cases) {
-    gp << "set title '" << k.def.label << " (T1 " << format_fixed(k.t1_s, 3) << " s)'\n"
-       << "plot for [i=0:" << std::max<std::size_t>(1, s.records.size()) - 1 << "] 'ida_" << k.def.label
-       << ".dat' index i using 1:2 with linespoints lc rgb '#b0b0b0' pt 7 ps 0.4 notitle, \\\n"
-       << "     'ida_" << k.def.label << "_fractiles.dat' using 2:1 with lines lw 3 lc rgb '#2ca02c' title '16 %', \\\n"
+    gp << "set title " << gnuplot_quote(k.def.label + " (T1 " + format_fixed(k.t1_s, 3) + " s)") << "\n"
+       << "plot for [i=0:" << std::max<std::size_t>(1, s.records.size()) - 1 << "] "
+       << gnuplot_quote("ida_" + k.def.label + ".dat")
+       << " index i using 1:2 with linespoints lc rgb '#b0b0b0' pt 7 ps 0.4 notitle, \\\n"
+       << "     " << gnuplot_quote("ida_" + k.def.label + "_fractiles.dat")
+       << " using 2:1 with lines lw 3 lc rgb '#2ca02c' title '16 %', \\\n"
        << "     '' using 3:1 with lines lw 3 lc rgb '#1f77b4' title '50 %', \\\n"
        << "     '' using 4:1 with lines lw 3 lc rgb '#d62728' title '84 %'\n";
   }
   gp << "unset multiplot\n"
      << "set terminal pngcairo size 900,620 noenhanced\nset output '../fragility.png'\n"
-     << "set title 'Fragility (lognormal, maximum likelihood): " << cfg.name << "'\n"
-     << "set xlabel '" << im_name << "'\nset ylabel 'P(peak interstory drift ratio >= limit)'\n"
+     << "set title " << gnuplot_quote("Fragility (lognormal, maximum likelihood): " + cfg.name) << "\n"
+     << "set xlabel " << gnuplot_quote(im_name) << "\nset ylabel 'P(peak interstory drift ratio >= limit)'\n"
      << "set xrange [0:*]\nset yrange [0:1]\nset key bottom right\nplot ";
   const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
   int col = 2;
   for (std::size_t c = 0; c < s.cases.size(); ++c) {
     for (std::size_t l = 0; l < cfg.drift_limits_pct.size(); ++l, ++col) {
       gp << (col > 2 ? ", \\\n     " : "") << "'fragility.dat' using 1:" << col << " with lines lw 2 dt " << c + 1
-         << " lc rgb '" << colors[l % 6] << "' title '" << s.cases[c].def.label << ", "
-         << format_shortest(cfg.drift_limits_pct[l]) << " %'";
+         << " lc rgb '" << colors[l % 6] << "' title "
+         << gnuplot_quote(s.cases[c].def.label + ", " + format_shortest(cfg.drift_limits_pct[l]) + " %");
     }
   }
   gp << "\n";
   gp.close();
-  const std::string cmd = "cd '" + plots.string() + "' && gnuplot plots.gp > gnuplot.log 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    std::cerr << "hybridsim ida: warning: gnuplot failed: see " << (plots / "gnuplot.log").string() << "\n";
+  const std::string plot_error =
+      common::run_gnuplot(fs::absolute(plots / "plots.gp").string(), plots.string(), (plots / "gnuplot.log").string());
+  if (!plot_error.empty())
+    std::cerr << "hybridsim ida: warning: " << plot_error << "\n";
   else if (!quiet)
     std::cout << "plots: " << (fs::path(out) / "ida-curves.png").string() << ", "
               << (fs::path(out) / "fragility.png").string() << "\n";
