@@ -6,18 +6,17 @@
 
 namespace damper {
 
-DamperInput input_at(const BrfdTest& test, std::size_t i, const BrfdParams& params) {
+DamperInput input_at(const BrfdTest& test, std::size_t i, double actuator1_initial_in, double actuator2_initial_in) {
   DamperInput in;
   in.drum_disp_in = test.drum_disp_in[i];
   in.drum_vel_in_per_s = test.drum_vel_in_per_s[i];
-  if (test.has_actuator_positions) {
-    in.actuator1_in = test.actuator1_in[i];
-    in.actuator2_in = test.actuator2_in[i];
-  } else {
-    in.actuator1_in = params.semiactive.actuator1_initial_in;
-    in.actuator2_in = params.semiactive.actuator2_initial_in;
-  }
+  in.actuator1_in = test.has_actuator_positions ? test.actuator1_in[i] : actuator1_initial_in;
+  in.actuator2_in = test.has_actuator_positions ? test.actuator2_in[i] : actuator2_initial_in;
   return in;
+}
+
+DamperInput input_at(const BrfdTest& test, std::size_t i, const BrfdParams& params) {
+  return input_at(test, i, params.semiactive.actuator1_initial_in, params.semiactive.actuator2_initial_in);
 }
 
 std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& test,
@@ -51,28 +50,48 @@ std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& t
   return f;
 }
 
-ErrorMetrics force_error(const std::vector<double>& measured, const std::vector<double>& predicted,
-                         std::size_t begin, std::size_t end) {
-  assert(begin < end && end <= measured.size() && predicted.size() == measured.size());
+namespace {
+
+// RMSE, RMSE/std and RMSE/range of the measured force over the samples i with take(i).
+template <typename Take>
+ErrorMetrics error_over(const std::vector<double>& measured, const std::vector<double>& predicted, std::size_t begin,
+                        std::size_t end, Take take) {
   ErrorMetrics m;
   double se = 0.0, sum = 0.0, sum2 = 0.0;
-  double lo = measured[begin], hi = measured[begin];
+  double lo = INFINITY, hi = -INFINITY;
+  std::size_t n = 0;
   for (std::size_t i = begin; i < end; ++i) {
+    if (!take(i)) continue;
     const double e = predicted[i] - measured[i];
     se += e * e;
     sum += measured[i];
     sum2 += measured[i] * measured[i];
     lo = std::min(lo, measured[i]);
     hi = std::max(hi, measured[i]);
+    ++n;
   }
-  const double n = static_cast<double>(end - begin);
-  m.samples = end - begin;
-  m.rmse_kip = std::sqrt(se / n);
-  const double mean = sum / n;
-  const double var = std::max(0.0, sum2 / n - mean * mean);
+  m.samples = n;
+  if (n == 0) return m;
+  const double nn = static_cast<double>(n);
+  m.rmse_kip = std::sqrt(se / nn);
+  const double mean = sum / nn;
+  const double var = std::max(0.0, sum2 / nn - mean * mean);
   m.nrmse_std = var > 0.0 ? m.rmse_kip / std::sqrt(var) : INFINITY;
   m.nrmse_range = hi > lo ? m.rmse_kip / (hi - lo) : INFINITY;
   return m;
+}
+
+}  // namespace
+
+ErrorMetrics force_error(const std::vector<double>& measured, const std::vector<double>& predicted,
+                         std::size_t begin, std::size_t end) {
+  assert(begin < end && end <= measured.size() && predicted.size() == measured.size());
+  return error_over(measured, predicted, begin, end, [](std::size_t) { return true; });
+}
+
+ErrorMetrics masked_error(const std::vector<double>& measured, const std::vector<double>& predicted,
+                          const std::vector<std::uint8_t>& mask, std::uint8_t want) {
+  return error_over(measured, predicted, 0, measured.size(), [&](std::size_t i) { return mask[i] == want; });
 }
 
 std::size_t index_at_time(const BrfdTest& test, double t_s) {

@@ -7,6 +7,7 @@
 #include "damper/model/brfd_model.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace damper {
@@ -14,6 +15,8 @@ namespace damper {
 /// Model input at sample i of a test. Files without actuator positions (characterization:
 /// actuators hold) get the config's initial positions x'_1, x'_2, so Eq. (4) reduces to b.
 DamperInput input_at(const BrfdTest& test, std::size_t i, const BrfdParams& params);
+/// The same with the actuator positions x'_1, x'_2 (in) given (the band-brake model's).
+DamperInput input_at(const BrfdTest& test, std::size_t i, double actuator1_initial_in, double actuator2_initial_in);
 
 /// Options of replay_force_kip().
 struct ReplayOptions {
@@ -39,6 +42,9 @@ struct ErrorMetrics {
 /// `predicted` is indexed like `measured` (same length). Requires begin < end <= size.
 ErrorMetrics force_error(const std::vector<double>& measured, const std::vector<double>& predicted,
                          std::size_t begin, std::size_t end);
+/// The same over the samples with mask[i] == want (all zero when there is none).
+ErrorMetrics masked_error(const std::vector<double>& measured, const std::vector<double>& predicted,
+                          const std::vector<std::uint8_t>& mask, std::uint8_t want);
 
 /// Sample index of time t (s) in the test, clamped to [0, size].
 std::size_t index_at_time(const BrfdTest& test, double t_s);

@@ -1,5 +1,7 @@
 #include "damper/diagnose/diagnose_bench.h"
 
+#include "common/number_format.h"
+#include "damper/data/replay.h"
 #include "damper/model/brfd_config.h"
 #include "damper/diagnose/diagnose.h"
 #include "damper/model/effects.h"
@@ -20,11 +22,7 @@ namespace damper {
 
 namespace {
 
-std::string fixed(double v, int d) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(d) << v;
-  return o.str();
-}
+using common::format_fixed;
 
 double raised_ramp(double s) { return s <= 0.0 ? 0.0 : s >= 1.0 ? 1.0 : 0.5 - 0.5 * std::cos(M_PI * s); }
 
@@ -38,13 +36,7 @@ BrfdParams with_initial(BrfdParams p, const BrfdTest& t) {
 
 // Force of a model on the inputs of `t`, bristle state from 0 (as a test starting unloaded).
 std::vector<double> generate(const BrfdParams& p, const BrfdTest& t) {
-  BrfdModel m(p);
-  std::vector<double> f(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
-    f[i] = i == 0 ? m.force_kip(m.bristle_in(), in) : m.step(in, t.dt_s);
-  }
-  return f;
+  return replay_force_kip(p, t, 0, t.size(), ReplayOptions{false});
 }
 
 BenchCase library_case(const std::string& effect, const std::string& strength, std::vector<double> theta) {
@@ -187,51 +179,65 @@ BrfdParams bench_base_model() {
   return p;
 }
 
-std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
-  struct Pulse {
-    double t0, a;
-    bool one, two;
-  };
-  const std::vector<std::pair<double, std::vector<Pulse>>> variants = {
+const std::vector<BenchDrive>& bench_drive_set() {
+  static const std::vector<BenchDrive> drives = {
       {1.0, {{3.5, 0.03, true, false}, {6.5, 0.03, false, true}, {7.5, 0.015, true, true}}},
       {0.8, {{4.5, 0.03, false, true}, {8.5, 0.025, true, false}, {9.5, 0.02, true, true}}}};
-  std::vector<BrfdTest> out;
-  for (std::size_t v = 0; v < variants.size(); ++v) {
-    BrfdTest t;
-    t.path = "bench/drive" + std::string(1, static_cast<char>('A' + v)) + ".json";
-    t.dt_s = 1.0 / rate_hz;
-    t.has_actuator_positions = true;
-    const std::size_t n = static_cast<std::size_t>(std::lround((kMotionS + kRestS) * rate_hz));
-    const double amp = variants[v].first, w = M_PI, tr = 2.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double time = static_cast<double>(i) * t.dt_s;
-      double env = 0.0, denv = 0.0;
-      if (time < kMotionS) {
-        if (time < tr) {
-          env = raised_ramp(time / tr);
-          denv = 0.5 * M_PI / tr * std::sin(M_PI * time / tr);
-        } else if (time > kMotionS - tr) {
-          env = raised_ramp((kMotionS - time) / tr);
-          denv = -0.5 * M_PI / tr * std::sin(M_PI * (kMotionS - time) / tr);
-        } else {
-          env = 1.0;
-        }
-      }
-      double x1 = base.semiactive.actuator1_initial_in, x2 = base.semiactive.actuator2_initial_in;
-      for (const Pulse& p : variants[v].second) {
-        if (time < p.t0 || time >= p.t0 + 1.0) continue;
-        const double dx = -p.a * std::sin(2.0 * M_PI * (time - p.t0));
-        if (p.one) x1 += dx;
-        if (p.two) x2 += dx;
-      }
-      t.time_s.push_back(time);
-      t.drum_disp_in.push_back(amp * env * std::sin(w * time));
-      t.drum_vel_in_per_s.push_back(amp * (denv * std::sin(w * time) + env * w * std::cos(w * time)));
-      t.actuator1_in.push_back(x1);
-      t.actuator2_in.push_back(x2);
-      t.actuator1_force_lb.push_back(0.0);
-      t.actuator2_force_lb.push_back(0.0);
+  return drives;
+}
+
+DamperInput bench_drive_input(double time, const BenchDrive& drive, const BrfdParams& base, double motion_s) {
+  const double w = M_PI, tr = 2.0;
+  double env = 0.0, denv = 0.0;
+  if (time < motion_s) {
+    if (time < tr) {
+      env = raised_ramp(time / tr);
+      denv = 0.5 * M_PI / tr * std::sin(M_PI * time / tr);
+    } else if (time > motion_s - tr) {
+      env = raised_ramp((motion_s - time) / tr);
+      denv = -0.5 * M_PI / tr * std::sin(M_PI * (motion_s - time) / tr);
+    } else {
+      env = 1.0;
     }
+  }
+  DamperInput in;
+  in.drum_disp_in = drive.amplitude_in * env * std::sin(w * time);
+  in.drum_vel_in_per_s = drive.amplitude_in * (denv * std::sin(w * time) + env * w * std::cos(w * time));
+  in.actuator1_in = base.semiactive.actuator1_initial_in;
+  in.actuator2_in = base.semiactive.actuator2_initial_in;
+  for (const ActuatorPulse& p : drive.pulses) {
+    if (time < p.t0_s || time >= p.t0_s + 1.0) continue;
+    const double dx = -p.amplitude_in * std::sin(2.0 * M_PI * (time - p.t0_s));
+    if (p.actuator1) in.actuator1_in += dx;
+    if (p.actuator2) in.actuator2_in += dx;
+  }
+  return in;
+}
+
+BrfdTest bench_drive(const BenchDrive& drive, const BrfdParams& base, double rate_hz, double motion_s, double rest_s) {
+  BrfdTest t;
+  t.dt_s = 1.0 / rate_hz;
+  t.has_actuator_positions = true;
+  const std::size_t n = static_cast<std::size_t>(std::lround((motion_s + rest_s) * rate_hz));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double time = static_cast<double>(i) * t.dt_s;
+    const DamperInput in = bench_drive_input(time, drive, base, motion_s);
+    t.time_s.push_back(time);
+    t.drum_disp_in.push_back(in.drum_disp_in);
+    t.drum_vel_in_per_s.push_back(in.drum_vel_in_per_s);
+    t.actuator1_in.push_back(in.actuator1_in);
+    t.actuator2_in.push_back(in.actuator2_in);
+    t.actuator1_force_lb.push_back(0.0);
+    t.actuator2_force_lb.push_back(0.0);
+  }
+  return t;
+}
+
+std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
+  std::vector<BrfdTest> out;
+  for (std::size_t v = 0; v < bench_drive_set().size(); ++v) {
+    BrfdTest t = bench_drive(bench_drive_set()[v], base, rate_hz, kMotionS, kRestS);
+    t.path = "bench/drive" + std::string(1, static_cast<char>('A' + v)) + ".json";
     out.push_back(std::move(t));
   }
   return out;
@@ -433,10 +439,10 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
         }
         tr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::ostringstream line;
-        line << std::left << std::setw(34) << c.name << std::setw(5) << s + 1 << std::setw(8) << fixed(sigma, 3)
-             << std::setw(31) << tr.named << std::right << std::setw(6) << fixed(tr.gap_before, 4) << " -> "
-             << std::setw(6) << fixed(tr.gap_after, 4) << "  " << (tr.correct ? "correct" : "WRONG") << " ("
-             << fixed(tr.seconds, 1) << " s)";
+        line << std::left << std::setw(34) << c.name << std::setw(5) << s + 1 << std::setw(8) << format_fixed(sigma, 3)
+             << std::setw(31) << tr.named << std::right << std::setw(6) << format_fixed(tr.gap_before, 4) << " -> "
+             << std::setw(6) << format_fixed(tr.gap_after, 4) << "  " << (tr.correct ? "correct" : "WRONG") << " ("
+             << format_fixed(tr.seconds, 1) << " s)";
         log(line.str());
         if (csv) {
           csv << c.name << ',' << c.family << ',' << seed << ',' << sigma << ',' << '"' << tr.named << '"' << ','

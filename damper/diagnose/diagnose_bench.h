@@ -81,7 +81,28 @@ std::vector<BenchCase> bench_cases(bool quick);
 /// 1 and 4 (1024 Hz, 15 s), from configs/brfd-semiactive.yaml's model. Their family labels map to
 /// the library: displacement_friction -> self_energizing, velocity_friction and viscous -> velocity.
 std::vector<BenchCase> hidden_shape_cases(bool quick);
-/// The two drives of a trial (inputs only; force empty), at rate_hz.
+/// A one-second electric actuator move of a drive, x = x' - a sin(2π (t - t0)) for t0 <= t <
+/// t0 + 1 s (retract, then extend), on actuator 1, 2 or both.
+struct ActuatorPulse {
+  double t0_s = 0.0, amplitude_in = 0.0;
+  bool actuator1 = false, actuator2 = false;
+};
+/// A drive of the synthetic semi-active tests (the bench's and the diagnose tests'): the drum a
+/// 0.5 Hz sinusoid of `amplitude_in` with 2 s raised-cosine ramps up and down over the motion,
+/// then at rest; the actuators at x'_1, x'_2 of the model plus the pulses.
+struct BenchDrive {
+  double amplitude_in = 1.0;
+  std::vector<ActuatorPulse> pulses;
+};
+/// The two drives of a trial: 1 in (actuator 1 at 3.5 s, actuator 2 at 6.5 s, both at 7.5 s) and
+/// 0.8 in (actuator 2 at 4.5 s, actuator 1 at 8.5 s, both at 9.5 s).
+const std::vector<BenchDrive>& bench_drive_set();
+/// The input of `drive` at time t (s), drum motion over [0, motion_s), actuators from `base`.
+DamperInput bench_drive_input(double t_s, const BenchDrive& drive, const BrfdParams& base, double motion_s = 12.0);
+/// `drive` sampled at rate_hz over motion_s + rest_s (inputs only; force empty).
+BrfdTest bench_drive(const BenchDrive& drive, const BrfdParams& base, double rate_hz, double motion_s = 12.0,
+                     double rest_s = 2.0);
+/// The two drives of a trial (bench_drive_set(); inputs only; force empty), at rate_hz.
 std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz);
 
 /// Runs the matrix; logs one line per trial, the confusion matrix and, last,

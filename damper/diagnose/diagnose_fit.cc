@@ -10,32 +10,6 @@
 
 namespace damper {
 
-ErrorMetrics masked_error(const std::vector<double>& measured, const std::vector<double>& predicted,
-                          const std::vector<std::uint8_t>& mask, std::uint8_t want) {
-  ErrorMetrics m;
-  double se = 0.0, sum = 0.0, sum2 = 0.0;
-  double lo = INFINITY, hi = -INFINITY;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < measured.size(); ++i) {
-    if (mask[i] != want) continue;
-    const double e = predicted[i] - measured[i];
-    se += e * e;
-    sum += measured[i];
-    sum2 += measured[i] * measured[i];
-    lo = std::min(lo, measured[i]);
-    hi = std::max(hi, measured[i]);
-    ++n;
-  }
-  m.samples = n;
-  if (n == 0) return m;
-  const double nn = static_cast<double>(n);
-  m.rmse_kip = std::sqrt(se / nn);
-  const double var = std::max(0.0, sum2 / nn - (sum / nn) * (sum / nn));
-  m.nrmse_std = var > 0.0 ? m.rmse_kip / std::sqrt(var) : INFINITY;
-  m.nrmse_range = hi > lo ? m.rmse_kip / (hi - lo) : INFINITY;
-  return m;
-}
-
 double effective_sample_count(const std::vector<double>& r) {
   const std::size_t n = r.size();
   if (n < 4) return static_cast<double>(n);

@@ -78,9 +78,7 @@ LugreParams refit_base(const DiagnoseRecord& r, const BrfdParams& start, int eva
 LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model,
                                 const ModelEffects& e, int max_evals);
 
-/// Error metrics over the samples with mask[i] == want (RMSE, RMSE/std, RMSE/range).
-ErrorMetrics masked_error(const std::vector<double>& measured, const std::vector<double>& predicted,
-                          const std::vector<std::uint8_t>& mask, std::uint8_t want);
+// masked_error (error metrics over a mask): damper/data/replay.h.
 
 /// Effective number of independent samples of a residual: n / (1 + 2 Σ ρ_k), the sum of its
 /// autocorrelation up to the first non-positive lag.
