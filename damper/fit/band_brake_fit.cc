@@ -1,6 +1,6 @@
 #include "damper/fit/band_brake_fit.h"
 
-#include <nlopt.hpp>
+#include "damper/fit/staged_search.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,17 +11,7 @@
 namespace damper {
 
 BandBrakeInput band_brake_input_at(const BrfdTest& test, std::size_t i, const BandBrakeParams& p) {
-  BandBrakeInput in;
-  in.drum_disp_in = test.drum_disp_in[i];
-  in.drum_vel_in_per_s = test.drum_vel_in_per_s[i];
-  if (test.has_actuator_positions) {
-    in.actuator1_in = test.actuator1_in[i];
-    in.actuator2_in = test.actuator2_in[i];
-  } else {
-    in.actuator1_in = p.actuator1_initial_in;
-    in.actuator2_in = p.actuator2_initial_in;
-  }
-  return in;
+  return input_at(test, i, p.actuator1_initial_in, p.actuator2_initial_in);
 }
 
 BandBrakeReplay replay_band_brake(const BandBrakeParams& params, const BrfdTest& test,
@@ -70,9 +60,6 @@ struct Problem {
   BandBrakeParams start;
   const BandBrakeFitOptions* opt;
   int groups = 1;
-  int evaluations = 0;
-  double best = INFINITY;
-  std::vector<double> best_x;
 
   BandBrakeParams params_for(const std::vector<double>& x, int group) const {
     BandBrakeParams p = start;
@@ -110,38 +97,9 @@ struct Problem {
       const double n = static_cast<double>(w[k].end - w[k].begin);
       total += se / n / stats[k].force_var + opt->cell_weight * sc / n / stats[k].cell_var;
     }
-    total /= static_cast<double>(w.size());
-    ++evaluations;
-    if (!std::isfinite(total)) total = 1e9;
-    if (total < best) {
-      best = total;
-      best_x = x;
-    }
-    return total;
+    return total / static_cast<double>(w.size());
   }
 };
-
-double objective(const std::vector<double>& x, std::vector<double>&, void* data) {
-  return static_cast<Problem*>(data)->cost(x);
-}
-
-void run_stage(nlopt::algorithm algo, int max_evals, const std::vector<double>& lo,
-               const std::vector<double>& hi, Problem& problem, std::vector<double>& x) {
-  nlopt::opt o(algo, static_cast<unsigned>(x.size()));
-  o.set_lower_bounds(lo);
-  o.set_upper_bounds(hi);
-  o.set_min_objective(objective, &problem);
-  o.set_maxeval(max_evals);
-  o.set_xtol_rel(1e-6);
-  o.set_ftol_abs(1e-9);
-  double f = 0.0;
-  try {
-    o.optimize(x, f);
-  } catch (const nlopt::roundoff_limited&) {
-  } catch (const nlopt::forced_stop&) {
-  }
-  x = problem.best_x;
-}
 
 double variance(const std::vector<double>& v, std::size_t b, std::size_t e, double scale) {
   double s = 0.0, s2 = 0.0;
@@ -158,7 +116,7 @@ double variance(const std::vector<double>& v, std::size_t b, std::size_t e, doub
 BandBrakeFitResult identify_band_brake(const std::vector<FitWindow>& windows,
                                        const BandBrakeParams& start, const BandBrakeFitOptions& opt) {
   if (windows.empty()) throw std::invalid_argument("band-brake identification: no data windows");
-  Problem problem{&windows, {}, start, &opt, 1, 0, INFINITY, {}};
+  Problem problem{&windows, {}, start, &opt, 1};
   for (const FitWindow& w : windows) {
     if (!w.test || w.end > w.test->size() || w.end < w.begin + 100)
       throw std::invalid_argument("band-brake identification: window of " +
@@ -188,30 +146,19 @@ BandBrakeFitResult identify_band_brake(const std::vector<FitWindow>& windows,
     x.push_back(std::log10(start.slack_tension_fwd_kip));
     x.push_back(std::log10(start.slack_tension_bwd_kip));
   }
-  for (std::size_t k = 0; k < x.size(); ++k) x[k] = std::clamp(x[k], lo[k], hi[k]);
-  problem.cost(x);
-  std::ostringstream algo;
-  if (opt.global_max_evals > 0 && opt.global_runs > 0) {
-    for (int run = 0; run < opt.global_runs; ++run) {
-      nlopt::srand(opt.seed + static_cast<unsigned>(run));
-      std::vector<double> xr = x;
-      run_stage(nlopt::GN_CRS2_LM, opt.global_max_evals, lo, hi, problem, xr);
-    }
-    algo << opt.global_runs << " x GN_CRS2_LM(" << opt.global_max_evals << ") + ";
-  }
-  x = problem.best_x;
-  run_stage(nlopt::LN_BOBYQA, opt.local_max_evals, lo, hi, problem, x);
-  algo << "LN_BOBYQA(" << opt.local_max_evals << ")";
+  const StagedSearchResult found =
+      staged_search([&problem](const std::vector<double>& x) { return problem.cost(x); }, x, lo, hi,
+                    {opt.global_max_evals, opt.global_runs, opt.local_max_evals, opt.seed, 1e-9});
 
   BandBrakeFitResult r;
-  r.params = problem.params_for(problem.best_x, 0);
+  r.params = problem.params_for(found.x, 0);
   for (int g = 0; g < problem.groups; ++g) {
-    const BandBrakeParams p = problem.params_for(problem.best_x, g);
+    const BandBrakeParams p = problem.params_for(found.x, g);
     r.slack_per_window.push_back({p.slack_tension_fwd_kip, p.slack_tension_bwd_kip});
   }
-  r.cost = problem.best;
-  r.evaluations = problem.evaluations;
-  r.algorithm = algo.str();
+  r.cost = found.cost;
+  r.evaluations = found.evaluations;
+  r.algorithm = found.algorithm;
   return r;
 }
 

@@ -1,6 +1,6 @@
 #include "damper/fit/identification.h"
 
-#include <nlopt.hpp>
+#include "damper/fit/staged_search.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +9,6 @@
 #include <stdexcept>
 
 namespace damper {
-
-namespace {
-
-// Search vector: log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s.
-constexpr int kDim = 8;
-
-}  // namespace
 
 LugreParams lugre_from_search_vector(const std::vector<double>& x) {
   LugreParams g;
@@ -32,60 +25,11 @@ LugreParams lugre_from_search_vector(const std::vector<double>& x) {
 
 namespace {
 
+// Search vector: log10 σ0, σ1, σ2, Fc_fwd, Fc_bwd, Fs_fwd/Fc_fwd, Fs_bwd/Fc_bwd, log10 v_s.
 std::vector<double> pack(const LugreParams& g) {
   return {std::log10(g.sigma0_kip_per_in), g.sigma1_kip_s_per_in, g.sigma2_kip_s_per_in,
           g.fc_fwd_kip, g.fc_bwd_kip, g.fs_fwd_kip / g.fc_fwd_kip, g.fs_bwd_kip / g.fc_bwd_kip,
           std::log10(g.vs_in_per_s)};
-}
-
-struct Problem {
-  const BrfdTest* test;
-  BrfdParams params;
-  std::size_t begin, end;
-  ReplayOptions replay;
-  int evaluations = 0;
-  double best = INFINITY;
-  std::vector<double> best_x;
-
-  double rmse(const std::vector<double>& x) {
-    params.lugre = lugre_from_search_vector(x);
-    const std::vector<double> f = replay_force_kip(params, *test, begin, end, replay);
-    double se = 0.0;
-    for (std::size_t i = begin; i < end; ++i) {
-      const double e = f[i - begin] - test->force_kip[i];
-      se += e * e;
-    }
-    const double r = std::sqrt(se / static_cast<double>(end - begin));
-    ++evaluations;
-    if (r < best) {
-      best = r;
-      best_x = x;
-    }
-    return std::isfinite(r) ? r : 1e9;
-  }
-};
-
-double objective(const std::vector<double>& x, std::vector<double>& /*grad*/, void* data) {
-  return static_cast<Problem*>(data)->rmse(x);
-}
-
-void run_stage(nlopt::algorithm algo, int max_evals, const std::vector<double>& lo,
-               const std::vector<double>& hi, Problem& problem, std::vector<double>& x) {
-  nlopt::opt opt(algo, kDim);
-  opt.set_lower_bounds(lo);
-  opt.set_upper_bounds(hi);
-  opt.set_min_objective(objective, &problem);
-  opt.set_maxeval(max_evals);
-  opt.set_xtol_rel(1e-6);
-  opt.set_ftol_abs(1e-7);
-  double f = 0.0;
-  try {
-    opt.optimize(x, f);
-  } catch (const nlopt::roundoff_limited&) {
-    // Converged as far as floating point allows: keep the best point seen.
-  } catch (const nlopt::forced_stop&) {
-  }
-  x = problem.best_x;
 }
 
 }  // namespace
@@ -113,37 +57,33 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
   const std::vector<double> hi = {std::log10(b.sigma0_max), b.sigma1_max, b.sigma2_max, b.fc_max,
                                   b.fc_max, b.fs_ratio_max, b.fs_ratio_max, std::log10(b.vs_max)};
 
-  Problem problem{&test, start, begin, end, opt.replay, 0, INFINITY, {}};
-  std::vector<double> x = pack(start.lugre);
-  for (int k = 0; k < kDim; ++k) x[k] = std::clamp(x[k], lo[k], hi[k]);
-  problem.rmse(x);  // the start point counts as a candidate
-
-  std::ostringstream algo;
-  if (opt.global_max_evals > 0 && opt.global_runs > 0) {
-    // Several seeded runs: the cost has several local minima (e.g. a Stribeck hump vs viscous
-    // friction explaining the same force rise); each run returns the best point seen so far.
-    for (int run = 0; run < opt.global_runs; ++run) {
-      nlopt::srand(opt.seed + static_cast<unsigned>(run));
-      std::vector<double> xr = x;
-      run_stage(nlopt::GN_CRS2_LM, opt.global_max_evals, lo, hi, problem, xr);
+  // Cost: RMSE between measured force and the force replayed with the candidate's LuGre block.
+  BrfdParams params = start;
+  const auto rmse = [&](const std::vector<double>& x) {
+    params.lugre = lugre_from_search_vector(x);
+    const std::vector<double> f = replay_force_kip(params, test, begin, end, opt.replay);
+    double se = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double e = f[i - begin] - test.force_kip[i];
+      se += e * e;
     }
-    x = problem.best_x;
-    algo << opt.global_runs << " x GN_CRS2_LM(" << opt.global_max_evals << ") + ";
-  }
-  run_stage(nlopt::LN_BOBYQA, opt.local_max_evals, lo, hi, problem, x);
-  algo << "LN_BOBYQA(" << opt.local_max_evals << ")";
+    return std::sqrt(se / static_cast<double>(end - begin));
+  };
+  const StagedSearchResult found =
+      staged_search(rmse, pack(start.lugre), lo, hi,
+                    {opt.global_max_evals, opt.global_runs, opt.local_max_evals, opt.seed, 1e-7});
 
   IdentificationResult r;
   r.params = start;
-  r.params.lugre = lugre_from_search_vector(problem.best_x);
+  r.params.lugre = lugre_from_search_vector(found.x);
   const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
   std::vector<double> full(test.size(), 0.0);
   std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
   r.residual = force_error(test.force_kip, full, begin, end);
   r.t0_s = test.time_s[begin];
   r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
-  r.evaluations = problem.evaluations;
-  r.algorithm = algo.str();
+  r.evaluations = found.evaluations;
+  r.algorithm = found.algorithm;
   return r;
 }
 
