@@ -20,7 +20,9 @@ TEST(FaultRealtime, SubstructureThatExitsAtOnceIsNoticedAtOnce) {
   const std::string dir = test_support::fresh_temp_dir("spawn");
   const std::string out = dir + "/out";
   // /bin/false starts and exits 1: before, the run waited the whole 10 s start timeout.
-  const std::string cfg = write_config(dir, "c.yaml", config_text(out, 2.0, "lcm", "", "[0.02, 0.02, 0.02]", "/bin/false"));
+  server::RunConfig c = run_config(out, 2.0, "lcm");
+  c.damper.executable = "/bin/false";
+  const std::string cfg = write_config(dir, "c.yaml", config_text(c));
   const auto t0 = Clock::now();
   const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
   const double s = seconds_since(t0);
@@ -31,8 +33,8 @@ TEST(FaultRealtime, SubstructureThatExitsAtOnceIsNoticedAtOnce) {
   // A file that cannot be executed (exec fails): reported at once with the system's reason.
   test_support::write_text(dir + "/not-a-program", "just text\n");
   fs::permissions(dir + "/not-a-program", fs::perms::owner_all);
-  const std::string cfg2 =
-      write_config(dir, "c2.yaml", config_text(out, 2.0, "lcm", "", "[0.02, 0.02, 0.02]", dir + "/not-a-program"));
+  c.damper.executable = dir + "/not-a-program";
+  const std::string cfg2 = write_config(dir, "c2.yaml", config_text(c));
   const auto t1 = Clock::now();
   const auto r2 = test_support::run_process({hybridsim(), "run", "--config", cfg2, "--quiet"});
   EXPECT_EQ(r2.exit_code, 1) << r2.err;

@@ -20,10 +20,11 @@ using namespace fault;
 /// A run long enough to be interrupted anywhere: the whole record (53.7 s) at 16384 Hz,
 /// one row every 16 steps.
 std::string slow_config(const std::string& dir, const std::string& out) {
-  std::string t = config_text(out, -1.0, "in_process");
-  t = std::regex_replace(t, std::regex("dt_s: 0.0009765625"), "dt_s: 0.00006103515625");
-  t = std::regex_replace(t, std::regex("flush_every_steps: 256"), "flush_every_steps: 4096\n  every_n_steps: 16");
-  return write_config(dir, "slow.yaml", t);
+  server::RunConfig c = run_config(out, -1.0, "in_process");
+  c.dt_s = 0.00006103515625;
+  c.output.flush_every_steps = 4096;
+  c.output.every_n_steps = 16;
+  return write_config(dir, "slow.yaml", config_text(c));
 }
 
 TEST(FaultRun, SigintAndSigtermAtRandomStepsKeepEveryRow) {
@@ -137,8 +138,9 @@ TEST(FaultRun, NonFiniteStateFailsTheRunWithTheReason) {
   const std::string dir = test_support::fresh_temp_dir("nan");
   const std::string out = dir + "/out";
   // Masses of 1e308 kip·s²/in: M⁻¹ and the energies overflow.
-  const std::string cfg =
-      write_config(dir, "c.yaml", config_text(out, 2.0, "in_process", "", "[1e308, 1e308, 1e308]"));
+  server::RunConfig c = run_config(out, 2.0, "in_process");
+  c.building.story_mass_kip_s2_per_in = {1e308, 1e308, 1e308};
+  const std::string cfg = write_config(dir, "c.yaml", config_text(c));
   const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
   EXPECT_NE(r.exit_code, 0) << r.out;
   if (r.exit_code == 1) {
@@ -157,8 +159,9 @@ TEST(FaultRun, EnergyBalanceAboveTheBoundFailsTheRun) {
   const std::string out = dir + "/out";
   // The run's ledger closes to round-off (~1e-15 over 30 s); a bound below round-off must
   // fail the run with the reason, the default bound (1e-6) must pass the same run.
-  const std::string cfg = write_config(dir, "c.yaml",
-                                       config_text(out, 30.0, "in_process", "  max_energy_balance_error: 1e-17\n"));
+  server::RunConfig c = run_config(out, 30.0, "in_process");
+  c.max_energy_balance_error = 1e-17;
+  const std::string cfg = write_config(dir, "c.yaml", config_text(c));
   const auto r = test_support::run_process({hybridsim(), "run", "--config", cfg, "--quiet"});
   const nlohmann::json s = read_json(out + "/summary.json");
   const double err = s["energy_kip_in"].value("balance_error", 0.0);
@@ -181,17 +184,18 @@ test_support::ProcessResult run_text(const std::string& dir, const std::string& 
 
 TEST(FaultRun, RecordLimitsAreInputErrorsNamingFileAndKey) {
   const std::string dir = test_support::fresh_temp_dir("record");
-  const std::string base = config_text(dir + "/out", 2.0, "in_process");
+  const server::RunConfig valid = run_config(dir + "/out", 2.0, "in_process");
+  const std::string base = config_text(valid);
   struct Case {
     std::string what, from, to, expect;
   };
   const std::vector<Case> cases = {
-      {"duration 0 (docs: < 0 = whole record)", "duration_s: 2.000000", "duration_s: 0", "record.duration_s"},
-      {"duration longer than the record", "duration_s: 2.000000", "duration_s: 60", "longer than the record"},
-      {"duration 1e7 s (24 GB before)", "duration_s: 2.000000", "duration_s: 1e7", "record.duration_s"},
-      {"dt_s larger than the record's DT", "dt_s: 0.0009765625", "dt_s: 0.02", "run.dt_s"},
-      {"empty run name", "name: fault", "name: \"\"", "run.name"},
-      {"duplicated key", "  scale: 1.0", "  scale: 1.0\n  scale: 2.0", "duplicated key"},
+      {"duration 0 (docs: < 0 = whole record)", "duration_s: 2\n", "duration_s: 0\n", "record.duration_s"},
+      {"duration longer than the record", "duration_s: 2\n", "duration_s: 60\n", "longer than the record"},
+      {"duration 1e7 s (24 GB before)", "duration_s: 2\n", "duration_s: 1e7\n", "record.duration_s"},
+      {"dt_s larger than the record's DT", "dt_s: 0.0009765625\n", "dt_s: 0.02\n", "run.dt_s"},
+      {"empty run name", "name: fault\n", "name: \"\"\n", "run.name"},
+      {"duplicated key", "  scale: 1\n", "  scale: 1\n  scale: 2\n", "duplicated key"},
   };
   for (const Case& c : cases) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -208,7 +212,9 @@ TEST(FaultRun, RecordLimitsAreInputErrorsNamingFileAndKey) {
                                    "NPTS=   5372, DT= 1e6 SEC"}) {
     const std::string path = dir + "/bad.AT2";
     test_support::write_text(path, std::regex_replace(rec, std::regex("NPTS=   5372, DT=   .0100 SEC"), header));
-    const auto r = run_text(dir, std::regex_replace(base, std::regex("path: [^\\n]*AT2"), "path: " + path));
+    server::RunConfig c = valid;
+    c.record.path = path;
+    const auto r = run_text(dir, config_text(c));
     EXPECT_EQ(r.exit_code, 2) << header << "\n" << r.err;
     EXPECT_NE(r.err.find(path + ":4:"), std::string::npos) << header << "\n" << r.err;
   }

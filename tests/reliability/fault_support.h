@@ -1,8 +1,10 @@
 #pragma once
-// Helpers of the fault-injection suite: run configs written from scratch (so that the tests
-// do not depend on the shipped configs' comments), processes started with signals, resource
+// Helpers of the fault-injection suite: run configs made in code (independent of the shipped
+// configs) and written by the one config serializer, processes started with signals, resource
 // limits and timed kills, and a scan of /proc for processes left behind.
+#include "damper/model/brfd_config.h"
 #include "run_process.h"
+#include "server/run/run_config.h"
 #include "test_paths.h"
 
 #include <nlohmann/json.hpp>
@@ -37,29 +39,43 @@ inline std::string record_path() {
   return test_paths::source_dir() + "/records/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2";
 }
 
-/// A three-story run config (configs/three-story.yaml's building and damper). `transport`
-/// "in_process" or "lcm"; `extra_run` lines are added to the run block.
-inline std::string config_text(const std::string& out_dir, double duration_s, const std::string& transport,
-                               const std::string& extra_run = "", const std::string& masses = "[0.02, 0.02, 0.02]",
-                               const std::string& executable = "") {
-  const std::string src = test_paths::source_dir();
-  std::string t = "run:\n  name: fault\n  dt_s: 0.0009765625\n" + extra_run +
-                  "record:\n  path: " + record_path() + "\n  scale: 1.0\n  duration_s: " + std::to_string(duration_s) +
-                  "\n"
-                  "building:\n  story_mass_kip_s2_per_in: " + masses + "\n"
-                  "  story_stiffness_kip_per_in: [16.0, 16.0, 16.0]\n"
-                  "  damping:\n    modes: [1, 2]\n    ratios: [0.02, 0.02]\n"
-                  "  dampers:\n    - story: 1\n      drum_per_drift: 1.0\n"
-                  "damper:\n  mode: virtual\n  model_config: " + src + "/configs/brfd-default.yaml\n";
-  if (!executable.empty()) t += "  executable: " + executable + "\n";
+/// A three-story run config made in code (the building and damper of
+/// configs/three-story.yaml, the LuGre model of configs/brfd-default.yaml, El Centro),
+/// `duration_s` of shaking, results in `out_dir`; `transport` "in_process" or "lcm". Tests
+/// change its fields and write it with config_text() (the one serializer).
+inline server::RunConfig run_config(const std::string& out_dir, double duration_s, const std::string& transport) {
+  server::RunConfig c;
+  c.name = "fault";
+  c.dt_s = 0.0009765625;
+  c.record.path = record_path();
+  c.record.scale = 1.0;
+  c.record.duration_s = duration_s;
+  c.building.story_mass_kip_s2_per_in = {0.02, 0.02, 0.02};
+  c.building.story_stiffness_kip_per_in = {16.0, 16.0, 16.0};
+  c.building.damping_modes = {1, 2};
+  c.building.damping_ratios = {0.02, 0.02};
+  c.building.dampers = {structure::DamperPlacement{1, 1.0}};
+  c.damper.mode = "virtual";
+  c.damper.model_config = test_paths::source_dir() + "/configs/brfd-default.yaml";
+  c.damper_model = damper::load_brfd_params(c.damper.model_config);
+  c.transport.kind = transport;
   if (transport == "lcm") {
-    t += "transport:\n  kind: lcm\n  url: \"udpm://239.255.76.67:7667?ttl=0\"\n  private_netns: true\n"
-         "  step_timeout_s: 1.0\n  start_timeout_s: 10.0\n";
-  } else {
-    t += "transport:\n  kind: in_process\n";
+    c.transport.url = "udpm://239.255.76.67:7667?ttl=0";
+    c.transport.private_netns = true;
+    c.transport.step_timeout_s = 1.0;
+    c.transport.start_timeout_s = 10.0;
   }
-  t += "output:\n  dir: " + out_dir + "\n  flush_every_steps: 256\n";
-  return t;
+  c.output.dir = out_dir;
+  c.output.flush_every_steps = 256;
+  return c;
+}
+
+/// `c` as YAML (server::run_config_to_yaml).
+inline std::string config_text(const server::RunConfig& c) { return server::run_config_to_yaml(c); }
+
+/// run_config(out_dir, duration_s, transport) as YAML.
+inline std::string config_text(const std::string& out_dir, double duration_s, const std::string& transport) {
+  return config_text(run_config(out_dir, duration_s, transport));
 }
 
 inline std::string write_config(const std::string& dir, const std::string& name, const std::string& text) {

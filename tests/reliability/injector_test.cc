@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <regex>
 #include <sstream>
 
 namespace {
@@ -191,9 +190,9 @@ TEST(Injector, PhysicalRunDetectsForgedSensorFramesAndEveryOtherInjectionAndComp
 TEST(Injector, PolicyStopEndsTheRunAtTheFirstForgedReplyNamingIt) {
   const std::string dir = test_support::fresh_temp_dir("inject-stop");
   const std::string out = dir + "/injected";
-  std::string text = config_text(out, 2.5, "lcm");
-  text = std::regex_replace(text, std::regex("  start_timeout_s: 10.0\n"), "  start_timeout_s: 10.0\n  on_bad_message: stop\n");
-  const std::string cfg = write_config(dir, "run.yaml", text);
+  server::RunConfig c = run_config(out, 2.5, "lcm");
+  c.transport.on_bad_message = "stop";
+  const std::string cfg = write_config(dir, "run.yaml", config_text(c));
   test_support::ProcessResult run;
   const Injected inj =
       run_with_injector(dir, out, {"--config", cfg, "--quiet"}, {"--only", "FORCE_FEEDBACK/bad_mac", "--rounds", "1"}, run);
@@ -214,11 +213,11 @@ TEST(Injector, SubstructureWithAnotherKeyIsRefusedAndTheStartErrorSaysSo) {
   const std::string out = dir + "/out";
   messages::write_key_file(dir + "/run.key", messages::generate_run_key());
   messages::write_key_file(dir + "/other.key", messages::generate_run_key());
-  std::string text = config_text(out, 1.0, "lcm");
-  text = std::regex_replace(text, std::regex("  start_timeout_s: 10.0\n"),
-                            "  start_timeout_s: 1.5\n  key_file: " + dir + "/run.key\n");
-  text = std::regex_replace(text, std::regex("damper:\n  mode: virtual\n"), "damper:\n  mode: virtual\n  launch: external\n");
-  const std::string cfg = write_config(dir, "run.yaml", text);
+  server::RunConfig c = run_config(out, 1.0, "lcm");
+  c.transport.start_timeout_s = 1.5;
+  c.transport.key_file = dir + "/run.key";
+  c.damper.launch = "external";
+  const std::string cfg = write_config(dir, "run.yaml", config_text(c));
   fs::create_directories(dir + "/sub");
   Child sub = start({bin_dir() + "/brfd-substructure", "--model-config", test_paths::source_dir() + "/configs/brfd-default.yaml",
                      "--url", "udpm://239.255.76.67:7667?ttl=0", "--key-file", dir + "/other.key", "--watchdog-s", "5"},

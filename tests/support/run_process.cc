@@ -1,11 +1,15 @@
 #include "run_process.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace test_support {
 
@@ -29,6 +33,33 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
   r.err = read_text(err_path);
   std::filesystem::remove_all(base);
   return r;
+}
+
+pid_t start_process(const std::vector<std::string>& argv, const std::string& log_path) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+bool kill_and_reap(pid_t pid) {
+  if (kill(pid, SIGKILL) != 0) return false;
+  int status = 0;
+  waitpid(pid, &status, 0);
+  for (auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10); std::chrono::steady_clock::now() < end;) {
+    const pid_t p = waitpid(-1, &status, WNOHANG);
+    if (p < 0) break;  // no children left
+    if (p == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
 }
 
 void write_text(const std::string& path, const std::string& text) {

@@ -3,6 +3,7 @@
 // effect), the report and the figures; a bad data file gives exit code 1 and a clear message.
 #include "damper/diagnose/diagnose_bench.h"
 #include "damper/model/brfd_config.h"
+#include "run_configs.h"
 #include "run_process.h"
 #include "synthetic.h"
 #include "test_paths.h"
@@ -105,14 +106,10 @@ namespace {
 // virtual damper steps the extended model (2 s of El Centro over LCM).
 TEST(DiagnoseCli, ShippedDiagnosedConfigRunsInAHybridRun) {
   const std::string dir = fresh_temp_dir("diagnose_cli_run");
-  std::string text = read_text(test_paths::source_dir() + "/configs/three-story.yaml");
-  text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
-                            "model_config: " + test_paths::source_dir() + "/configs/brfd-diagnosed-semiactive.yaml");
-  text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: 2.0");
-  text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");
-  ASSERT_NE(text.find("brfd-diagnosed-semiactive.yaml"), std::string::npos);
-  write_text(dir + "/run.yaml", text);
+  server::RunConfig run = test_support::short_three_story(2.0, dir + "/results");
+  test_support::use_damper_config(run, "brfd-diagnosed-semiactive.yaml");
+  ASSERT_TRUE(run.damper_model.effects.backlash.has_value());  // the config holds effects
+  test_support::write_run_config(dir + "/run.yaml", run);
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "run", "--config", dir + "/run.yaml"});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::string model = read_text(dir + "/results/damper-model.yaml");

@@ -6,6 +6,7 @@
 #include "hybrid_lcm/heartbeat_t.hpp"
 #include "hybrid_lcm/run_control_t.hpp"
 #include "messages/lcm_bus.h"
+#include "run_configs.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -47,19 +48,11 @@ const std::vector<std::string> kLabels = {
     "ImperialValley1940_ElCentroArray9_180_NS_RSN6", "Kocaeli1999_Duzce_270_RSN1158",
     "Northridge1994_RinaldiReceivingSta_228_RSN1063", "Northridge1994_SylmarConverterSta_142_RSN1084"};
 
-/// configs/three-story.yaml with absolute paths, `duration_s` of shaking and (optionally)
-/// another record.
+/// configs/three-story.yaml with `kDuration_s` of shaking and (optionally) another record,
+/// results in `dir`/results, written by the config serializer.
 std::string write_config(const std::string& dir, const std::string& record_path = "") {
-  std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
-  text = std::regex_replace(text, std::regex("\\.\\./records/"), records_dir() + "/");
-  if (!record_path.empty()) text = std::regex_replace(text, std::regex("  path: [^ ]*AT2"), "  path: " + record_path);
-  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
-                            "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
-  text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: " + std::to_string(kDuration_s));
-  text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");
-  const std::string path = dir + "/three-story-short.yaml";
-  test_support::write_text(path, text);
-  return path;
+  return test_support::write_run_config(dir + "/three-story-short.yaml",
+                                        test_support::short_three_story(kDuration_s, dir + "/results", record_path));
 }
 
 test_support::ProcessResult batch(const std::vector<std::string>& args) {
@@ -328,22 +321,6 @@ TEST(Batch, BadInputIsExitCode2NamingTheProblem) {
 // ---------------------------------------------------------------------------------------
 // kill and resume
 
-/// Starts the batch driver in the background, stdout/stderr to files.
-pid_t start_background(const std::vector<std::string>& argv, const std::string& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, STDOUT_FILENO);
-    dup2(fd, STDERR_FILENO);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    _exit(127);
-  }
-  return pid;
-}
-
 struct FileId {
   ino_t inode = 0;
   long mtime_ns = 0;
@@ -363,7 +340,7 @@ TEST(Batch, KilledBatchResumesWithoutRedoingFinishedRuns) {
   const std::string out = dir + "/out";
   const std::vector<std::string> argv{hybridsim(), "batch", "--config", write_config(dir), "--records",
                                       records_dir(), "--out", out, "--jobs", "1"};
-  const pid_t driver = start_background(argv, dir + "/first.log");
+  const pid_t driver = test_support::start_process(argv, dir + "/first.log");
   // Kill it (SIGKILL: no chance to clean up) once the first run is final and the second is
   // under way.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -371,15 +348,7 @@ TEST(Batch, KilledBatchResumesWithoutRedoingFinishedRuns) {
     ASSERT_LT(std::chrono::steady_clock::now(), deadline) << test_support::read_text(dir + "/first.log");
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  ASSERT_EQ(kill(driver, SIGKILL), 0);
-  int status = 0;
-  waitpid(driver, &status, 0);
-  // Reap the orphans (the worker gets SIGTERM when its driver dies, its substructure when it dies).
-  for (auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10); std::chrono::steady_clock::now() < end;) {
-    const pid_t p = waitpid(-1, &status, WNOHANG);
-    if (p < 0) break;  // no children left
-    if (p == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_TRUE(test_support::kill_and_reap(driver));
   // Which runs finished before the kill (at least the first), which did not (the second).
   std::vector<std::string> finished;
   for (const std::string& l : kLabels)

@@ -1,5 +1,6 @@
 // hybridsim run as a user runs it: bad input gets a clear error naming file/key/channel and a
 // non-zero exit code, and the results written before a failure stay on disk.
+#include "run_configs.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -23,19 +24,11 @@ namespace fs = std::filesystem;
 
 std::string hybridsim() { return test_paths::bin_dir() + "/hybridsim"; }
 
-/// A copy of configs/three-story.yaml in `dir` with absolute paths and `duration_s`.
+/// configs/three-story.yaml with `duration_s` (and optionally another record), results in
+/// `dir`/results, written to `dir`/three-story.yaml by the config serializer.
 std::string write_config(const std::string& dir, double duration_s, const std::string& record_path = "") {
-  std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
-  text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  if (!record_path.empty())
-    text = std::regex_replace(text, std::regex("  path: [^ ]*AT2"), "  path: " + record_path);
-  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
-                            "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
-  text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: " + std::to_string(duration_s));
-  text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");
-  const std::string path = dir + "/three-story.yaml";
-  test_support::write_text(path, text);
-  return path;
+  return test_support::write_run_config(dir + "/three-story.yaml",
+                                        test_support::short_three_story(duration_s, dir + "/results", record_path));
 }
 
 long csv_rows(const std::string& path) {

@@ -1,5 +1,6 @@
 // hybridsim run with the integrator, resampling and no-damper keys of issue 15: what the user
 // sees (printed summary, summary.json, effective-config.yaml, exit codes).
+#include "run_configs.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -7,26 +8,22 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
-#include <regex>
+#include <functional>
 
 namespace {
 
 std::string hybridsim() { return test_paths::bin_dir() + "/hybridsim"; }
 
-// configs/three-story.yaml, in-process, `seconds` of El Centro, with `edit` applied to the text.
+// configs/three-story.yaml, in-process, `seconds` of El Centro, results in `dir`/results, with
+// `edit` applied to the RunConfig; written by the config serializer to `dir`/run.yaml.
 std::string write_config(const std::string& dir, double seconds,
-                         const std::vector<std::pair<std::string, std::string>>& edits) {
-  std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
-  text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: (brfd-[a-z-]*.yaml)"),
-                            "model_config: " + test_paths::source_dir() + "/configs/$1");
-  text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: " + std::to_string(seconds));
-  text = std::regex_replace(text, std::regex("kind: lcm "), "kind: in_process ");
-  text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/results");
-  for (const auto& [pattern, replacement] : edits) text = std::regex_replace(text, std::regex(pattern), replacement);
-  const std::string path = dir + "/run.yaml";
-  test_support::write_text(path, text);
-  return path;
+                         const std::function<void(server::RunConfig&)>& edit = {}) {
+  server::RunConfig c = test_support::shipped_run_config("three-story.yaml");
+  c.record.duration_s = seconds;
+  c.transport.kind = "in_process";
+  c.output.dir = dir + "/results";
+  if (edit) edit(c);
+  return test_support::write_run_config(dir + "/run.yaml", c);
 }
 
 nlohmann::json summary(const std::string& dir) {
@@ -42,7 +39,7 @@ TEST(HybridsimRun, KrAlphaRunStatesIntegratorResamplingAndLedger) {
   const std::string dir = test_support::fresh_temp_dir("cli-kr");
   const auto r = test_support::run_process(
       {hybridsim(), "run", "--config",
-       write_config(dir, 3.0, {{"  dt_s: ([^\\n]*)\\n", "  dt_s: $1\n  integrator: kr_alpha\n  rho_inf: 0.3\n"}})});
+       write_config(dir, 3.0, [](server::RunConfig& c) { c.integrator = {"kr_alpha", 0.3}; })});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("integrator: KR-alpha (Kolay & Ricles 2014), rho_inf = 0.3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("record: record step 0.01 s, run step 0.0009765625 s: linear interpolation"), std::string::npos)
@@ -69,26 +66,31 @@ TEST(HybridsimRun, KrAlphaRunStatesIntegratorResamplingAndLedger) {
 TEST(HybridsimRun, ResampleExactNeedsTheRunStepToDivideTheRecordStep) {
   const std::string dir = test_support::fresh_temp_dir("cli-exact");
   auto r = test_support::run_process(
-      {hybridsim(), "run", "--config", write_config(dir, 1.0, {{"  scale: 1.0", "  scale: 1.0\n  resample: exact"}})});
+      {hybridsim(), "run", "--config", write_config(dir, 1.0, [](server::RunConfig& c) { c.record.resample = "exact"; })});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("record.resample: exact"), std::string::npos) << r.err;
   r = test_support::run_process({hybridsim(), "run", "--config",
-                                 write_config(dir, 1.0, {{"  scale: 1.0", "  scale: 1.0\n  resample: exact"},
-                                                         {"dt_s: 0.0009765625", "dt_s: 0.0025"}})});
+                                 write_config(dir, 1.0, [](server::RunConfig& c) {
+                                   c.record.resample = "exact";
+                                   c.dt_s = 0.0025;
+                                 })});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(summary(dir)["resampling"]["steps_per_record_sample"], 4);
   EXPECT_NE(r.out.find("4 steps per record sample"), std::string::npos) << r.out;
 }
 
-// A building without dampers runs with neither a damper nor a transport block.
+// A building without dampers runs without a damper block (the loader's acceptance of a config
+// without damper and transport blocks: RunConfig.NoDampersNeedNoDamperBlock).
 TEST(HybridsimRun, NoDampersNeedNoDamperBlock) {
   const std::string dir = test_support::fresh_temp_dir("cli-bare");
   const auto r = test_support::run_process(
       {hybridsim(), "run", "--config",
-       write_config(dir, 2.0, {{"  dampers:\\n(    [^\\n]*\\n)+", ""},
-                               {"\\ndamper:\\n(  [^\\n]*\\n)+", "\n"},
-                               {"\\ntransport:\\n(  [^\\n]*\\n)+", "\n"}})});
+       write_config(dir, 2.0, [](server::RunConfig& c) {
+         c.building.dampers.clear();
+         c.has_damper_block = false;
+       })});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(test_support::read_text(dir + "/run.yaml").find("\ndamper:"), std::string::npos);
   const nlohmann::json j = summary(dir);
   EXPECT_EQ(j["status"], "ok");
   EXPECT_TRUE(j["peak_damper_force_kip"].empty());

@@ -3,6 +3,7 @@
 // files it promises, the fragility fit it prints, and that a run killed midway (SIGKILL of
 // the driver) and started again completes without redoing a finished run, with the results
 // of an uninterrupted IDA.
+#include "run_configs.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -32,17 +33,11 @@ std::string hybridsim() { return test_paths::bin_dir() + "/hybridsim"; }
 /// A run config (three-story.yaml, 4 s) and an IDA config with two cases over it, in `dir`.
 std::string write_configs(const std::string& dir) {
   const std::string src = test_paths::source_dir();
-  std::string run = test_support::read_text(src + "/configs/three-story.yaml");
-  run = std::regex_replace(run, std::regex("\\.\\./records/"), src + "/records/");
-  run = std::regex_replace(run, std::regex("model_config: brfd-band-brake.yaml"),
-                           "model_config: " + src + "/configs/brfd-default.yaml");
-  run = std::regex_replace(run, std::regex("duration_s: 30.0"), "duration_s: 4.0");
-  run = std::regex_replace(run, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "/unused");
-  test_support::write_text(dir + "/three-story-short.yaml", run);
+  server::RunConfig run = test_support::short_three_story(4.0, dir + "/unused");
+  test_support::write_run_config(dir + "/three-story-short.yaml", run);
   // The second case: the same building with the semi-active model's damper (paper Tables 1-2).
-  std::string semi = std::regex_replace(run, std::regex(src + "/configs/brfd-default.yaml"),
-                                        src + "/configs/brfd-semiactive.yaml");
-  test_support::write_text(dir + "/three-story-semi.yaml", semi);
+  test_support::use_damper_config(run, "brfd-semiactive.yaml");
+  test_support::write_run_config(dir + "/three-story-semi.yaml", run);
   const std::string ida =
       "ida:\n  name: test IDA\n  intensity_measure: sa_t1\n  damping_ratio: 0.05\n  story_height_in: 48\n"
       "  drift_limits_pct: [0.5, 1.5]\n  collapse_drift_pct: 4.0\n  transport: in_process\n  duration_s: 0\n"
@@ -127,31 +122,14 @@ TEST(IdaCli, KilledMidwayResumesWithoutRedoingFinishedRuns) {
   write_configs(dir);
   const std::string out = dir + "/out";
   const std::vector<std::string> argv = ida_args(dir, out);
-  const pid_t driver = fork();
-  if (driver == 0) {
-    const int fd = open((dir + "/first.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, STDOUT_FILENO);
-    dup2(fd, STDERR_FILENO);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    _exit(127);
-  }
+  const pid_t driver = test_support::start_process(argv, dir + "/first.log");
   // Kill the driver (SIGKILL: no clean-up) once 8 of the 24 runs are final.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!(fs::exists(out + "/runs") && finished_runs(out).size() >= 8)) {
     ASSERT_LT(std::chrono::steady_clock::now(), deadline) << test_support::read_text(dir + "/first.log");
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  ASSERT_EQ(kill(driver, SIGKILL), 0);
-  int status = 0;
-  waitpid(driver, &status, 0);
-  for (auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10); std::chrono::steady_clock::now() < end;) {
-    const pid_t p = waitpid(-1, &status, WNOHANG);
-    if (p < 0) break;
-    if (p == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_TRUE(test_support::kill_and_reap(driver));
   const std::set<std::string> before = finished_runs(out);
   ASSERT_GE(before.size(), 8u);
   ASSERT_LT(before.size(), 24u) << "the kill came too late to test a resume";

@@ -4,6 +4,7 @@
 // with the HDF5 C API and compared bit for bit with the CSV's round-trip text), h5dump from
 // Debian's hdf5-tools (a reader that is not ours) prints the same numbers, and the units and
 // the effective config are attributes.
+#include "run_configs.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -28,16 +29,10 @@ struct Runs {
 
 /// configs/three-story.yaml, in-process, 6 s, in the given output format.
 std::string write_config(const std::string& dir, const std::string& format) {
-  std::string text = test_support::read_text(test_paths::source_dir() + "/configs/three-story.yaml");
-  text = std::regex_replace(text, std::regex("\\.\\./records/"), test_paths::source_dir() + "/records/");
-  text = std::regex_replace(text, std::regex("model_config: brfd-band-brake.yaml"),
-                            "model_config: " + test_paths::source_dir() + "/configs/brfd-default.yaml");
-  text = std::regex_replace(text, std::regex("duration_s: 30.0"), "duration_s: 6.0");
-  text = std::regex_replace(text, std::regex("kind: lcm"), "kind: in_process");
-  text = std::regex_replace(text, std::regex("dir: \\.\\./results/three-story"), "dir: " + dir + "\n  format: " + format);
-  const std::string path = dir + "-" + format + ".yaml";
-  test_support::write_text(path, text);
-  return path;
+  server::RunConfig c = test_support::short_three_story(6.0, dir);
+  c.transport.kind = "in_process";
+  c.output.format = format;
+  return test_support::write_run_config(dir + "-" + format + ".yaml", c);
 }
 
 const Runs& runs() {
