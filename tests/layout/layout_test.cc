@@ -3,7 +3,9 @@
 // so dependencies point one way, common <- messages <- {structure, damper/*} <- {validation,
 // server/*}, and no cycle between folders is possible. Header files must also not include
 // each other in a cycle. The test reads the real tree (every .h/.cc under the source root),
-// so a new folder or an upward include fails here, naming the file and the line.
+// so a new folder or an upward include fails here, naming the file and the line. README.md's
+// Layout table is checked against the same tree: a row per ranked folder, in rank order, its
+// targets the ones the folder's CMakeLists.txt defines, and every top-level folder covered.
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <sstream>
 #include <regex>
 #include <set>
 #include <string>
@@ -147,5 +150,79 @@ TEST(Layout, NoHeaderIncludeCycle) {
   for (const auto& [h, targets] : graph) {
     (void)targets;
     if (state[h] == 0) visit(h);
+  }
+}
+
+namespace {
+
+struct ReadmeRow {
+  std::string folder;                // "damper/fit" (no trailing slash)
+  std::vector<std::string> targets;  // the names in backticks of the target column
+  int line = 0;
+};
+
+// Rows of the table under "## Layout" in README.md (up to the next heading).
+std::vector<ReadmeRow> readme_layout_rows() {
+  std::ifstream in(fs::path(test_paths::source_dir()) / "README.md");
+  std::vector<ReadmeRow> rows;
+  bool inside = false;
+  int n = 0;
+  const std::regex row_re(R"(^\|\s*`([^`]+)/`\s*\|([^|]*)\|)");
+  const std::regex name_re("`([^`]+)`");
+  for (std::string text; std::getline(in, text);) {
+    ++n;
+    if (text.rfind("## ", 0) == 0 || text.rfind("### ", 0) == 0) inside = text == "## Layout";
+    std::smatch m;
+    if (!inside || !std::regex_search(text, m, row_re)) continue;
+    ReadmeRow r{m[1].str(), {}, n};
+    const std::string cell = m[2].str();
+    for (std::sregex_iterator it(cell.begin(), cell.end(), name_re), end; it != end; ++it) r.targets.push_back((*it)[1].str());
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(Layout, ReadmeLayoutTableIsTheTree) {
+  const fs::path root = test_paths::source_dir();
+  const std::vector<ReadmeRow> rows = readme_layout_rows();
+  ASSERT_GT(rows.size(), 10u) << "no Layout table found in README.md";
+  std::map<std::string, const ReadmeRow*> by_folder;
+  int last_rank = -1;
+  std::string last_folder;
+  for (const ReadmeRow& r : rows) {
+    EXPECT_TRUE(fs::is_directory(root / r.folder)) << "README.md:" << r.line << ": `" << r.folder << "/` is not a folder";
+    EXPECT_TRUE(by_folder.emplace(r.folder, &r).second) << "README.md:" << r.line << ": `" << r.folder << "/` twice";
+    const auto rank = kRank.find(r.folder);
+    if (rank == kRank.end()) continue;
+    // Lower rows use upper rows: the ranked folders stand in rank order.
+    EXPECT_GE(rank->second, last_rank) << "README.md:" << r.line << ": `" << r.folder << "/` (rank " << rank->second
+                                       << ") is listed below `" << last_folder << "/` (rank " << last_rank << ")";
+    last_rank = rank->second;
+    last_folder = r.folder;
+    // The target column names exactly the targets of the folder's CMakeLists.txt.
+    std::ifstream cm(root / r.folder / "CMakeLists.txt");
+    std::stringstream text;
+    text << cm.rdbuf();
+    const std::string cmake = text.str();
+    const std::regex target_re(R"(add_(library|executable)\(\s*([A-Za-z0-9_.+-]+))");
+    std::set<std::string> defined, listed(r.targets.begin(), r.targets.end());
+    for (std::sregex_iterator it(cmake.begin(), cmake.end(), target_re), end; it != end; ++it) defined.insert((*it)[2].str());
+    EXPECT_EQ(listed, defined) << "README.md:" << r.line << ": the targets of `" << r.folder << "/`";
+  }
+  for (const auto& [folder, rank] : kRank) {
+    (void)rank;
+    if (!fs::exists(root / folder)) continue;
+    EXPECT_EQ(by_folder.count(folder), 1u) << folder << "/ has no row in README.md's Layout table";
+  }
+  // Every top-level folder of the tree (not a build folder, not hidden) has a row, itself or
+  // its sub-folders.
+  for (const auto& entry : fs::directory_iterator(root)) {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_directory() || name[0] == '.' || fs::exists(entry.path() / "CMakeCache.txt")) continue;
+    bool covered = false;
+    for (const ReadmeRow& r : rows) covered = covered || r.folder == name || r.folder.rfind(name + "/", 0) == 0;
+    EXPECT_TRUE(covered) << name << "/ has no row in README.md's Layout table";
   }
 }
