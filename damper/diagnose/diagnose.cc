@@ -138,16 +138,22 @@ std::vector<std::vector<double>> localize_before(const std::vector<DiagnoseRecor
   return pred;
 }
 
-// 3. Rounds of the selection on records decimated to about fit_rate_hz. Returns the final state.
-ModelState select_effects(const std::vector<DiagnoseRecord>& recs, const ModelState& before,
-                          const std::vector<const EffectSpec*>& library, const DiagnoseOptions& o, DiagnoseResult& result,
-                          const Log& log) {
+// The records decimated to about o.fit_rate_hz (every k-th sample, k >= 1), as the fits see them.
+std::vector<DiagnoseRecord> decimated_for_fits(const std::vector<DiagnoseRecord>& recs, const DiagnoseOptions& o) {
   std::vector<DiagnoseRecord> frecs;
   for (const DiagnoseRecord& r : recs) {
     const std::size_t k = std::max<std::size_t>(
         1, static_cast<std::size_t>(std::floor(1.0 / (r.test.dt_s * std::max(1.0, o.fit_rate_hz)) + 1e-9)));
     frecs.push_back(decimate(r, k));
   }
+  return frecs;
+}
+
+// 3. Rounds of the selection on records decimated to about fit_rate_hz. Returns the final state.
+ModelState select_effects(const std::vector<DiagnoseRecord>& recs, const ModelState& before,
+                          const std::vector<const EffectSpec*>& library, const DiagnoseOptions& o, DiagnoseResult& result,
+                          const Log& log) {
+  const std::vector<DiagnoseRecord> frecs = decimated_for_fits(recs, o);
   const ValidationPlan plan = make_validation_plan(frecs);
   result.validation = plan.description;
   log("");
@@ -215,12 +221,7 @@ BrfdParams through_yaml(const BrfdParams& p, const std::string& dir) {
 void final_gap(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model, ModelEffects effects,
                const std::vector<std::vector<double>>& pred_before, const DiagnoseOptions& o, DiagnoseResult& result,
                const Log& log) {
-  std::vector<DiagnoseRecord> frecs;
-  for (const DiagnoseRecord& r : recs) {
-    const std::size_t k = std::max<std::size_t>(
-        1, static_cast<std::size_t>(std::floor(1.0 / (r.test.dt_s * std::max(1.0, o.fit_rate_hz)) + 1e-9)));
-    frecs.push_back(decimate(r, k));
-  }
+  const std::vector<DiagnoseRecord> frecs = decimated_for_fits(recs, o);
   double sum_before = 0.0;
   for (std::size_t k = 0; k < recs.size(); ++k) {
     result.records[k].before = force_error(recs[k].test.force_kip, pred_before[k], 0, recs[k].test.size());

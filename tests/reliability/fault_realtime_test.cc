@@ -52,15 +52,13 @@ TEST(FaultRealtime, SignalsAtRandomStepsStopCleanlyWithoutOrphans) {
     const std::string dir = test_support::fresh_temp_dir("rtsig");
     const std::string out = dir + "/out";
     const std::string cfg = write_config(dir, "c.yaml", config_text(out, 30.0, "lcm"));
-    Child c = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
     // somewhere between step ~1000 and ~20000 (the history has ~250 bytes per row)
     const std::uintmax_t at = 250'000 + std::uniform_int_distribution<std::uintmax_t>(0, 4'500'000)(rng);
-    const bool reached = wait_for_size(out + "/time_history.csv", at, 60.0);
-    kill(c.pid, sig);
-    const int code = c.wait();
-    ASSERT_TRUE(reached) << c.err();
-    EXPECT_EQ(code, 128 + sig) << c.err();
-    const nlohmann::json s = read_json(out + "/summary.json");
+    const SignalledRun run = run_until_signal(cfg, dir, out, at, sig);
+    const int code = run.exit_code;
+    ASSERT_TRUE(run.reached) << run.err;
+    EXPECT_EQ(code, 128 + sig) << run.err;
+    const nlohmann::json& s = run.summary;
     EXPECT_EQ(s.value("status", ""), "interrupted") << s.dump();
     const long steps = s.value("steps", -1L);
     EXPECT_EQ(count_lines(out + "/time_history.csv"), 2 + steps);

@@ -36,13 +36,11 @@ TEST(FaultRun, SigintAndSigtermAtRandomStepsKeepEveryRow) {
     const std::string cfg = slow_config(dir, out);
     // Full history: 879,923 steps / 16 rows of 17 values, ~ 17 MB; stop somewhere in 5-60 %.
     const std::uintmax_t at = 1'000'000 + std::uniform_int_distribution<std::uintmax_t>(0, 9'000'000)(rng);
-    Child c = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
-    const bool reached = wait_for_size(out + "/time_history.csv", at, 60.0);
-    kill(c.pid, sig);
-    const int code = c.wait();
-    ASSERT_TRUE(reached) << c.err();
-    EXPECT_EQ(code, 128 + sig) << c.err();
-    const nlohmann::json s = read_json(out + "/summary.json");
+    const SignalledRun run = run_until_signal(cfg, dir, out, at, sig);
+    const int code = run.exit_code;
+    ASSERT_TRUE(run.reached) << run.err;
+    EXPECT_EQ(code, 128 + sig) << run.err;
+    const nlohmann::json& s = run.summary;
     EXPECT_EQ(s.value("status", ""), "interrupted");
     EXPECT_EQ(s.value("signal", ""), sig == SIGINT ? "SIGINT" : "SIGTERM");
     const long steps = s.value("steps", -1L);
@@ -50,7 +48,7 @@ TEST(FaultRun, SigintAndSigtermAtRandomStepsKeepEveryRow) {
     EXPECT_LT(steps, 879923);
     // header + the t = 0 row + one row per 16 steps reached: every row computed is on disk
     EXPECT_EQ(count_lines(out + "/time_history.csv"), 2 + steps / 16) << "steps " << steps;
-    EXPECT_NE(c.err().find(sig == SIGINT ? "SIGINT" : "SIGTERM"), std::string::npos) << c.err();
+    EXPECT_NE(run.err.find(sig == SIGINT ? "SIGINT" : "SIGTERM"), std::string::npos) << run.err;
     std::printf("[ fault    ] %s at step %ld: exit %d, status interrupted, %ld rows on disk\n",
                 sig == SIGINT ? "SIGINT" : "SIGTERM", steps, code, count_lines(out + "/time_history.csv") - 1);
     fs::remove_all(dir);

@@ -177,4 +177,26 @@ inline nlohmann::json read_json(const std::string& path) {
   return j;
 }
 
+/// A run stopped by a signal.
+struct SignalledRun {
+  bool reached = false;   ///< the history reached the size before the signal (else: 60 s passed)
+  int exit_code = -1;
+  nlohmann::json summary;  ///< its summary.json (null if none)
+  std::string err;        ///< its stderr
+};
+
+/// `hybridsim run --config cfg --quiet` (logs in `dir`), sent `sig` once `out`/time_history.csv
+/// holds `at_bytes` (or after 60 s), waited for.
+inline SignalledRun run_until_signal(const std::string& cfg, const std::string& dir, const std::string& out,
+                                     std::uintmax_t at_bytes, int sig) {
+  Child c = start({hybridsim(), "run", "--config", cfg, "--quiet"}, dir);
+  SignalledRun r;
+  r.reached = wait_for_size(out + "/time_history.csv", at_bytes, 60.0);
+  kill(c.pid, sig);
+  r.exit_code = c.wait();
+  r.err = c.err();
+  if (fs::exists(out + "/summary.json")) r.summary = read_json(out + "/summary.json");
+  return r;
+}
+
 }  // namespace fault

@@ -50,40 +50,37 @@ ModelEffects all_effects() {
   return e;
 }
 
-TEST(Effects, EachEffectVanishesAtItsNullParameters) {
+// Largest |force change| (kip) over the synthetic drive at 512 Hz when `spec` is switched on with
+// `theta` (the parameter's null values or its starts) in the base model.
+double largest_change(const EffectSpec& spec, double EffectParameter::*theta, bool* present = nullptr) {
   const BrfdParams base = synthetic_base();
   SyntheticOptions o;
   o.rate_hz = 512.0;
   const std::vector<double> ref = run(base, o);
+  BrfdParams p = base;
+  std::vector<double> values;
+  for (const EffectParameter& q : spec.parameters) values.push_back(q.*theta);
+  spec.set(p.effects, values);
+  if (present) *present = spec.present(p.effects);
+  const std::vector<double> f = run(p, o);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::abs(f[i] - ref[i]));
+  return worst;
+}
+
+TEST(Effects, EachEffectVanishesAtItsNullParameters) {
   for (const EffectSpec& spec : effect_library()) {
-    BrfdParams p = base;
-    std::vector<double> null;
-    for (const EffectParameter& q : spec.parameters) null.push_back(q.null_value);
-    spec.set(p.effects, null);
-    ASSERT_TRUE(spec.present(p.effects));
-    const std::vector<double> f = run(p, o);
-    double worst = 0.0;
-    for (std::size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::abs(f[i] - ref[i]));
+    bool present = false;
+    const double worst = largest_change(spec, &EffectParameter::null_value, &present);
+    ASSERT_TRUE(present) << spec.name;
     // residual_static's null is a 100 s settling time: not exactly zero over the 2 s rest.
     EXPECT_LT(worst, spec.name == "residual_static" ? 0.05 : 1e-9) << spec.name;
   }
 }
 
 TEST(Effects, EveryEffectChangesTheForce) {
-  const BrfdParams base = synthetic_base();
-  SyntheticOptions o;
-  o.rate_hz = 512.0;
-  const std::vector<double> ref = run(base, o);
-  for (const EffectSpec& spec : effect_library()) {
-    BrfdParams p = base;
-    std::vector<double> start;
-    for (const EffectParameter& q : spec.parameters) start.push_back(q.start);
-    spec.set(p.effects, start);
-    const std::vector<double> f = run(p, o);
-    double worst = 0.0;
-    for (std::size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::abs(f[i] - ref[i]));
-    EXPECT_GT(worst, 0.1) << spec.name;
-  }
+  for (const EffectSpec& spec : effect_library())
+    EXPECT_GT(largest_change(spec, &EffectParameter::start), 0.1) << spec.name;
 }
 
 TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
