@@ -8,18 +8,11 @@ namespace structure {
 
 CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
     : building_(building), dt_s_(dt_s) {
-  if (!std::isfinite(dt_s) || !(dt_s > 0.0)) {
-    throw std::invalid_argument("CrIntegrator: time step must be finite and > 0, got " +
-                                std::to_string(dt_s));
-  }
+  check_time_step("CrIntegrator", dt_s);
   const Eigen::MatrixXd& m = building.mass();
   const Eigen::MatrixXd denom = m + (0.5 * dt_s) * building.damping() + (0.25 * dt_s * dt_s) * building.stiffness();
   alpha_ = denom.partialPivLu().solve(m);
-  mass_llt_.compute(m);
-  if (mass_llt_.info() != Eigen::Success) {
-    throw std::invalid_argument("CrIntegrator: mass matrix is not positive definite");
-  }
-  mass_iota_ = m * building.influence();
+  mass_llt_ = mass_factor("CrIntegrator", m);
   // M⁻¹C, M⁻¹K, M⁻¹Γ once, so that a step is three small (sparse) matrix-vector products.
   minv_damping_ = sparse_rows(mass_llt_.solve(building.damping()));
   minv_stiffness_ = sparse_rows(mass_llt_.solve(building.stiffness()));
@@ -27,28 +20,15 @@ CrIntegrator::CrIntegrator(const ShearBuilding& building, double dt_s)
   minv_damping_band_ = tridiagonal(minv_damping_);
   minv_stiffness_band_ = tridiagonal(minv_stiffness_);
   const int n = building.num_stories();
-  x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = rhs_ = Eigen::VectorXd::Zero(n);
+  x_ = v_ = a_ = x_next_ = v_next_ = alpha_a_ = Eigen::VectorXd::Zero(n);
 }
 
 void CrIntegrator::initialize(const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
                               double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
-  const int n = building_.num_stories();
-  if (disp_in.size() != n || vel_in_per_s.size() != n) {
-    throw std::invalid_argument("CrIntegrator::initialize: expected " + std::to_string(n) +
-                                " floor displacements and velocities");
-  }
-  if (damper_force_kip.size() != building_.num_dampers()) {
-    throw std::invalid_argument("CrIntegrator::initialize: expected " +
-                                std::to_string(building_.num_dampers()) + " damper forces, got " +
-                                std::to_string(damper_force_kip.size()));
-  }
+  a_ = equilibrium_acceleration("CrIntegrator", building_, mass_llt_, disp_in, vel_in_per_s, ground_accel_in_per_s2,
+                                damper_force_kip);
   x_ = disp_in;
   v_ = vel_in_per_s;
-  rhs_.noalias() = -ground_accel_in_per_s2 * mass_iota_;
-  rhs_.noalias() -= building_.damping() * v_;
-  rhs_.noalias() -= building_.stiffness() * x_;
-  rhs_.noalias() -= building_.damper_gamma() * damper_force_kip;
-  a_ = mass_llt_.solve(rhs_);
   x_next_ = x_;
   v_next_ = v_;
   step_ = 0;
@@ -66,11 +46,7 @@ void CrIntegrator::predict() {
 
 void CrIntegrator::complete(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
   if (!predicted_) throw std::logic_error("CrIntegrator::complete called without predict for this step");
-  if (damper_force_kip.size() != building_.num_dampers()) {
-    throw std::invalid_argument("CrIntegrator::complete: expected " +
-                                std::to_string(building_.num_dampers()) + " damper forces, got " +
-                                std::to_string(damper_force_kip.size()));
-  }
+  check_damper_forces("CrIntegrator", "complete", building_, damper_force_kip);
   // a₊ = −ι·ü_g − M⁻¹C·v₊ − M⁻¹K·x₊ − M⁻¹Γ·F  (= M⁻¹ of the equation above)
   // One pass over the rows of the sparse M⁻¹C, M⁻¹K, M⁻¹Γ (ι is all ones).
   const double* v = v_next_.data();

@@ -78,12 +78,11 @@ class CrIntegrator final : public Integrator {
   double dt_s_;
   Eigen::MatrixXd alpha_;
   Eigen::LLT<Eigen::MatrixXd> mass_llt_;
-  Eigen::VectorXd mass_iota_;  // M·ι
   // M⁻¹C, M⁻¹K, M⁻¹Γ, stored sparse: a shear building's M is diagonal and K, C are
   // tridiagonal, so these products skip the (exact) zeros of the dense matrices.
   SparseRows minv_damping_, minv_stiffness_, minv_gamma_;
   Tridiagonal minv_damping_band_, minv_stiffness_band_;  // the same, as diagonals (valid for a shear building)
-  Eigen::VectorXd x_, v_, a_, x_next_, v_next_, alpha_a_, rhs_;
+  Eigen::VectorXd x_, v_, a_, x_next_, v_next_, alpha_a_;
   long step_ = 0;
   bool initialized_ = false;
   bool predicted_ = false;

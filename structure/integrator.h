@@ -66,6 +66,23 @@ class Integrator {
   virtual long step_index() const = 0;
   virtual double dt_s() const = 0;
   double time_s() const { return static_cast<double>(step_index()) * dt_s(); }
+
+ protected:
+  // What every integrator checks and computes the same way; `who` ("CrIntegrator", ...) names
+  // it in the messages.
+  /// @throws std::invalid_argument unless dt_s is finite and > 0.
+  static void check_time_step(const char* who, double dt_s);
+  /// Cholesky factor of M. @throws std::invalid_argument if M is not positive definite.
+  static Eigen::LLT<Eigen::MatrixXd> mass_factor(const char* who, const Eigen::MatrixXd& mass);
+  /// @throws std::invalid_argument unless `damper_force_kip` has one entry per damper.
+  static void check_damper_forces(const char* who, const char* method, const ShearBuilding& building,
+                                  const Eigen::VectorXd& damper_force_kip);
+  /// The start of initialize(): checks the sizes and returns the equilibrium acceleration
+  /// a₀ = M⁻¹(−M ι ü_g − C v₀ − K x₀ − Γ F₀) (in/s²) with M's factor `mass_llt`.
+  static Eigen::VectorXd equilibrium_acceleration(const char* who, const ShearBuilding& building,
+                                                  const Eigen::LLT<Eigen::MatrixXd>& mass_llt,
+                                                  const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
+                                                  double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip);
 };
 
 /// Builds the integrator named in `settings` (matrices computed once here).

@@ -24,9 +24,7 @@ KrAlphaParameters KrAlphaParameters::from_rho_inf(double rho_inf) {
 
 KrAlphaIntegrator::KrAlphaIntegrator(const ShearBuilding& building, double dt_s, double rho_inf)
     : building_(building), dt_s_(dt_s), p_(KrAlphaParameters::from_rho_inf(rho_inf)) {
-  if (!std::isfinite(dt_s) || !(dt_s > 0.0)) {
-    throw std::invalid_argument("KrAlphaIntegrator: time step must be finite and > 0, got " + std::to_string(dt_s));
-  }
+  check_time_step("KrAlphaIntegrator", dt_s);
   const Eigen::MatrixXd& m = building.mass();
   const Eigen::MatrixXd& c = building.damping();
   const Eigen::MatrixXd& k = building.stiffness();
@@ -35,10 +33,7 @@ KrAlphaIntegrator::KrAlphaIntegrator(const ShearBuilding& building, double dt_s,
   alpha1_ = lhs.solve(m);
   alpha2_ = (0.5 + p_.gamma) * alpha1_;
   alpha3_ = lhs.solve(p_.alpha_m * m + p_.alpha_f * g * c + p_.alpha_f * b * k);
-  mass_llt_.compute(m);
-  if (mass_llt_.info() != Eigen::Success) {
-    throw std::invalid_argument("KrAlphaIntegrator: mass matrix is not positive definite");
-  }
+  mass_llt_ = mass_factor("KrAlphaIntegrator", m);
   const int n = building.num_stories();
   // M(I − α₃) = M·(M + γΔtC + βΔt²K)⁻¹·((1 − α_m)M + (1 − α_f)(γΔtC + βΔt²K)): regular for ρ∞ ∈ [0, 1].
   const Eigen::MatrixXd mass_hat = m * (Eigen::MatrixXd::Identity(n, n) - alpha3_);
@@ -48,7 +43,7 @@ KrAlphaIntegrator::KrAlphaIntegrator(const ShearBuilding& building, double dt_s,
   p_gamma_ = hat.solve(building.damper_gamma());
   p_accel_ = hat.solve(m * alpha3_);
   p_iota_ = hat.solve(m * building.influence());
-  x_ = v_ = a_ = x_next_ = v_next_ = delta_a_ = x_w_ = v_w_ = a_next_ = rhs_ = Eigen::VectorXd::Zero(n);
+  x_ = v_ = a_ = x_next_ = v_next_ = delta_a_ = x_w_ = v_w_ = a_next_ = Eigen::VectorXd::Zero(n);
   f_w_ = force_prev_ = Eigen::VectorXd::Zero(building.num_dampers());
 }
 
@@ -60,22 +55,10 @@ std::string KrAlphaIntegrator::description() const {
 
 void KrAlphaIntegrator::initialize(const Eigen::VectorXd& disp_in, const Eigen::VectorXd& vel_in_per_s,
                                    double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
-  const int n = building_.num_stories();
-  if (disp_in.size() != n || vel_in_per_s.size() != n) {
-    throw std::invalid_argument("KrAlphaIntegrator::initialize: expected " + std::to_string(n) +
-                                " floor displacements and velocities");
-  }
-  if (damper_force_kip.size() != building_.num_dampers()) {
-    throw std::invalid_argument("KrAlphaIntegrator::initialize: expected " + std::to_string(building_.num_dampers()) +
-                                " damper forces, got " + std::to_string(damper_force_kip.size()));
-  }
+  a_ = equilibrium_acceleration("KrAlphaIntegrator", building_, mass_llt_, disp_in, vel_in_per_s,
+                                ground_accel_in_per_s2, damper_force_kip);
   x_ = disp_in;
   v_ = vel_in_per_s;
-  rhs_.noalias() = -ground_accel_in_per_s2 * (building_.mass() * building_.influence());
-  rhs_.noalias() -= building_.damping() * v_;
-  rhs_.noalias() -= building_.stiffness() * x_;
-  rhs_.noalias() -= building_.damper_gamma() * damper_force_kip;
-  a_ = mass_llt_.solve(rhs_);
   x_next_ = x_;
   v_next_ = v_;
   force_prev_ = damper_force_kip;
@@ -95,10 +78,7 @@ void KrAlphaIntegrator::predict() {
 
 void KrAlphaIntegrator::complete(double ground_accel_in_per_s2, const Eigen::VectorXd& damper_force_kip) {
   if (!predicted_) throw std::logic_error("KrAlphaIntegrator::complete called without predict for this step");
-  if (damper_force_kip.size() != building_.num_dampers()) {
-    throw std::invalid_argument("KrAlphaIntegrator::complete: expected " + std::to_string(building_.num_dampers()) +
-                                " damper forces, got " + std::to_string(damper_force_kip.size()));
-  }
+  check_damper_forces("KrAlphaIntegrator", "complete", building_, damper_force_kip);
   const double wn = 1.0 - p_.alpha_f, wo = p_.alpha_f;  // weights of step n+1 and step n
   x_w_ = wn * x_next_ + wo * x_;
   v_w_ = wn * v_next_ + wo * v_;

@@ -77,7 +77,7 @@ class KrAlphaIntegrator final : public Integrator {
   // (M(I − α₃))⁻¹ applied to C, K, Γ, M·ι and M·α₃: a step is a few matrix-vector products.
   Eigen::MatrixXd p_damping_, p_stiffness_, p_gamma_, p_accel_;
   Eigen::VectorXd p_iota_;
-  Eigen::VectorXd x_, v_, a_, x_next_, v_next_, delta_a_, x_w_, v_w_, f_w_, a_next_, rhs_;
+  Eigen::VectorXd x_, v_, a_, x_next_, v_next_, delta_a_, x_w_, v_w_, f_w_, a_next_;
   Eigen::VectorXd force_prev_;  // F_n
   double ground_prev_ = 0.0;    // ü_g(t_n)
   long step_ = 0;
