@@ -1,3 +1,4 @@
+#include "test_buildings.h"
 #include "structure/cr_integrator.h"
 #include "structure/energy.h"
 #include "structure/kr_alpha_integrator.h"
@@ -46,19 +47,12 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDt = 1.0 / 1024;  // the hybrid-simulation rate
 
-BuildingParams sdof_params(double m, double k, double zeta) {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {m};
-  p.story_stiffness_kip_per_in = {k};
-  p.damping_modes = {1, 1};
-  p.damping_ratios = {zeta, zeta};
-  return p;
-}
+using test_buildings::sdof;
 
 // Max |x_CR − x_exact| over [0, t_end] for SDOF free vibration from (x0, v0) with step dt.
 double sdof_free_vibration_error(double dt, double t_end, double x0, double v0) {
   const double m = 0.2, k = 150.0, zeta = 0.05;
-  const ShearBuilding b(sdof_params(m, k, zeta));
+  const ShearBuilding b(sdof(m, k, zeta));
   const testing::Sdof exact{std::sqrt(k / m), zeta};
   CrIntegrator cr(b, dt);
   cr.initialize(Eigen::VectorXd::Constant(1, x0), Eigen::VectorXd::Constant(1, v0), 0.0, Eigen::VectorXd(0));
@@ -121,7 +115,7 @@ TEST(CrIntegrator, SdofConvergenceOrder) {
 // transient), and second-order convergence (error ratio 3.6 to 4.4 for Δt halved).
 double sdof_harmonic_error(double dt, double* peak_out) {
   const double m = 0.2, k = 150.0, zeta = 0.05;
-  const ShearBuilding b(sdof_params(m, k, zeta));
+  const ShearBuilding b(sdof(m, k, zeta));
   const testing::Sdof exact{std::sqrt(k / m), zeta};
   const double a = 0.3 * kGravity_in_per_s2, big_omega = 2 * kPi * 3.0, t_end = 4.0;
   CrIntegrator cr(b, dt);
@@ -193,11 +187,7 @@ TEST(CrIntegrator, ThreeStoryFreeVibrationMatchesModalSuperposition) {
 
 TEST(CrIntegrator, StepsAllocateNothing) {
 #if defined(STRUCTURE_CAN_COUNT_ALLOCATIONS)
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.2, 0.2, 0.2};
-  p.story_stiffness_kip_per_in = {150, 150, 150};
-  p.dampers = {{1, 1.0}};
-  const ShearBuilding b(p);
+  const ShearBuilding b(test_buildings::uniform_three_story(0.2, 150, true));
   CrIntegrator cr(b, kDt);
   Eigen::VectorXd force = Eigen::VectorXd::Zero(1);
   cr.initialize(1.0, force);
@@ -224,11 +214,7 @@ TEST(CrIntegrator, StepsAllocateNothing) {
 // KR-α's predict/complete and the centred-difference energy ledger allocate nothing either.
 TEST(KrAlphaIntegrator, StepsAndLedgerAllocateNothing) {
 #if defined(STRUCTURE_CAN_COUNT_ALLOCATIONS)
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.2, 0.2, 0.2};
-  p.story_stiffness_kip_per_in = {150, 150, 150};
-  p.dampers = {{1, 1.0}};
-  const ShearBuilding b(p);
+  const ShearBuilding b(test_buildings::uniform_three_story(0.2, 150, true));
   KrAlphaIntegrator kr(b, kDt, 0.5);
   EnergyLedger ledger(b);
   Eigen::VectorXd force = Eigen::VectorXd::Zero(1);
@@ -250,7 +236,7 @@ TEST(KrAlphaIntegrator, StepsAndLedgerAllocateNothing) {
 }
 
 TEST(CrIntegrator, MisuseThrows) {
-  const ShearBuilding b(sdof_params(0.2, 150, 0.02));
+  const ShearBuilding b(sdof(0.2, 150, 0.02));
   EXPECT_THROW(CrIntegrator(b, 0.0), std::invalid_argument);
   EXPECT_THROW(CrIntegrator(b, std::nan("")), std::invalid_argument);
   CrIntegrator cr(b, kDt);

@@ -2,6 +2,7 @@
 // a stiff 20-story building. The closed form is written here independently of the
 // implementation: the amplification matrix of the method for a damped SDOF, built from the
 // paper's scalar recurrences, and its eigenvalues.
+#include "test_buildings.h"
 #include "structure/cr_integrator.h"
 #include "structure/ground_motion.h"
 #include "structure/integrator.h"
@@ -73,14 +74,7 @@ double spectral_radius(double rho, double big_omega, double xi) {
   return es.eigenvalues().cwiseAbs().maxCoeff();
 }
 
-BuildingParams sdof(double m, double k, double zeta) {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {m};
-  p.story_stiffness_kip_per_in = {k};
-  p.damping_modes = {1, 1};
-  p.damping_ratios = {zeta, zeta};
-  return p;
-}
+using test_buildings::sdof;
 
 // Measured from the integrator: free vibration from x0 = 1, then the principal pair of the
 // sequence by Prony's method (least squares x_{n+1} = p x_n − q x_{n−1}) on steps [skip, skip + len],
@@ -167,13 +161,7 @@ TEST(KrAlphaIntegrator, ParametersAndMatrices) {
   EXPECT_LT((one.alpha1() - CrIntegrator(b, dt).alpha()).cwiseAbs().maxCoeff(), 1e-14);
 }
 
-BuildingParams three_story_with_damper() {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.2, 0.2, 0.2};
-  p.story_stiffness_kip_per_in = {150, 150, 150};
-  p.dampers = {{1, 1.0}};
-  return p;
-}
+BuildingParams three_story_with_damper() { return test_buildings::uniform_three_story(0.2, 150, true); }
 
 // ρ∞ = 1 reproduces CR (see kr_alpha_integrator.h) with a nonlinear damper force fed back at
 // x_{n+1}: El Centro 10 s, viscous-friction force 2·tanh(ẋ_drum/0.5) kip. Bound 1e-9 of the peak.

@@ -6,6 +6,7 @@
 // 0.931250 / 0.929876 / 0.700520 in at the record's own step 0.01 s.
 // The project (CR, default integrator) must give the periods to 1e-6 and the drifts within
 // 0.5 % at Δt = 1/1024 s (record linearly interpolated) and within 0.6 % at Δt = 0.01 s.
+#include "test_buildings.h"
 #include "structure/ground_motion.h"
 #include "structure/integrator.h"
 #include "structure/shear_building.h"
@@ -22,14 +23,7 @@ const std::string kRecords = PROJECT_RECORDS_DIR;
 constexpr double kOpenSeesPeriods_s[3] = {0.611886, 0.233328, 0.158603};
 constexpr double kOpenSeesPeakDrift_in[3] = {0.931250, 0.929876, 0.700520};
 
-ShearBuilding opensees_building() {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.5, 0.5, 0.5};
-  p.story_stiffness_kip_per_in = {300, 250, 200};
-  p.damping_modes = {1, 2};
-  p.damping_ratios = {0.05, 0.05};
-  return ShearBuilding(p);
-}
+ShearBuilding opensees_building() { return ShearBuilding(test_buildings::opensees_three_story()); }
 
 Eigen::VectorXd peak_drifts(const ShearBuilding& b, const GroundMotion& gm, double dt, const IntegratorSettings& s) {
   auto in = make_integrator(b, dt, s);

@@ -1,3 +1,5 @@
+#include "test_buildings.h"
+#include "test_dampers.h"
 #include "structure/energy.h"
 
 #include "structure/ground_motion.h"
@@ -15,25 +17,9 @@ namespace {
 
 const std::string kRecords = PROJECT_RECORDS_DIR;
 
-damper::BrfdParams lugre_damper() {
-  damper::BrfdParams d;
-  d.kind = damper::DamperKind::passive_lugre;
-  d.lugre.sigma0_kip_per_in = 60.0;
-  d.lugre.sigma1_kip_s_per_in = 0.5;
-  d.lugre.sigma2_kip_s_per_in = 0.05;
-  d.lugre.fs_fwd_kip = d.lugre.fs_bwd_kip = 2.4;
-  d.lugre.fc_fwd_kip = d.lugre.fc_bwd_kip = 2.0;
-  d.lugre.vs_in_per_s = 0.5;
-  return d;
-}
+using test_dampers::lugre_damper;
 
-BuildingParams three_story(double m, double k, bool with_damper) {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {m, m, m};
-  p.story_stiffness_kip_per_in = {k, k, k};
-  if (with_damper) p.dampers = {{1, 1.0}};
-  return p;
-}
+using test_buildings::uniform_three_story;
 
 EnergyLedger ledger_of(const ShearBuilding& b, const GroundMotion& gm, const ResponseHistory& h,
                        EnergyDefinition definition = EnergyDefinition::trapezoidal_state) {
@@ -62,9 +48,9 @@ void print(const char* what, const EnergyLedger& e) {
 TEST(EnergyLedger, CrWithDamperBalancesOverElCentro) {
   const GroundMotion gm = read_ground_motion(kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2");
   for (double m : {0.2, 0.02}) {
-    const ShearBuilding b(three_story(m, 150.0 * m / 0.2, true));
+    const ShearBuilding b(uniform_three_story(m, 150.0 * m / 0.2, true));
     const ResponseHistory h = testing_support::run_in_process(testing_support::in_process_config(
-        three_story(m, 150.0 * m / 0.2, true), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2",
+        uniform_three_story(m, 150.0 * m / 0.2, true), kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2",
         lugre_damper(), 1.0 / 1024, -1));
     const EnergyLedger e = ledger_of(b, gm, h);
     print(m == 0.2 ? "CR + LuGre, m 0.2, k 150, El Centro 53.7 s, trapezoidal" : "CR + LuGre, m 0.02, k 15, El Centro 53.7 s, trapezoidal", e);
@@ -164,7 +150,7 @@ TEST(EnergyLedger, KrAlphaAlgorithmicEnergyIsItsNumericalDissipation) {
 // The same balance from the CVODE reference output (independent integrator, same ledger).
 TEST(EnergyLedger, CvodeWithDamperBalancesOverElCentro) {
   const GroundMotion gm = read_ground_motion(kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2");
-  const ShearBuilding b(three_story(0.02, 15.0, true));
+  const ShearBuilding b(uniform_three_story(0.02, 15.0, true));
   ReferenceOptions opt;
   opt.duration_s = 20.0;
   const EnergyLedger e = ledger_of(b, gm, simulate_monolithic(b, gm, {lugre_damper()}, opt));
@@ -195,7 +181,7 @@ TEST(EnergyLedger, FreeVibrationDissipatesInitialEnergy) {
 }
 
 TEST(EnergyLedger, MisuseThrows) {
-  const ShearBuilding b(three_story(0.2, 150.0, true));
+  const ShearBuilding b(uniform_three_story(0.2, 150.0, true));
   EnergyLedger e(b);
   EXPECT_THROW(EnergyLedger(b).add_step(0.01, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3), 0.0, Eigen::VectorXd::Zero(1)),
                std::logic_error);

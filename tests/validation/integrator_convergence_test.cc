@@ -4,6 +4,8 @@
 // (RSN6, 180), first 20 s. The linear case steps the integrators directly; the case with a
 // LuGre BRFD in story 1 runs the real step loop (server::run_hybrid, in-process damper bank)
 // with run.integrator set, as `hybridsim run` does.
+#include "test_buildings.h"
+#include "test_dampers.h"
 #include "structure/ground_motion.h"
 #include "structure/integrator.h"
 #include "validation/monolithic_reference.h"
@@ -13,20 +15,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace structure {
 namespace {
 
 const std::string kRecords = PROJECT_RECORDS_DIR;
 
-ShearBuilding building() {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.5, 0.5, 0.5};
-  p.story_stiffness_kip_per_in = {300, 250, 200};
-  p.damping_modes = {1, 2};
-  p.damping_ratios = {0.05, 0.05};
-  return ShearBuilding(p);
-}
+ShearBuilding building() { return ShearBuilding(test_buildings::opensees_three_story()); }
 
 double max_rel(const Eigen::VectorXd& a, const Eigen::VectorXd& ref) {
   return (a - ref).cwiseQuotient(ref).cwiseAbs().maxCoeff();
@@ -46,6 +42,31 @@ Eigen::VectorXd peak_drifts(const ShearBuilding& b, const GroundMotion& gm, cons
   return peak;
 }
 
+// Peak-drift error vs `ref` of each integrator kind (kinds[0] is CR) at each step rate, and the
+// largest KR-alpha vs CR difference per rate; one [ measured ] line per rate.
+struct Convergence {
+  std::vector<std::vector<double>> err;  // [kind][rate]
+  std::vector<double> cr_kr;             // [rate]
+};
+Convergence convergence(const std::vector<IntegratorSettings>& kinds, const std::vector<double>& steps_per_s,
+                        const Eigen::VectorXd& ref,
+                        const std::function<Eigen::VectorXd(const IntegratorSettings&, double dt)>& peaks_of) {
+  Convergence c;
+  c.err.resize(kinds.size());
+  for (double rate : steps_per_s) {
+    std::vector<Eigen::VectorXd> peaks;
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+      peaks.push_back(peaks_of(kinds[i], 1.0 / rate));
+      c.err[i].push_back(max_rel(peaks.back(), ref));
+    }
+    c.cr_kr.push_back(std::max(max_rel(peaks[1], peaks[0]), max_rel(peaks[2], peaks[0])));
+    std::printf("[ measured ]   dt 1/%.0f s: max peak-drift error vs CVODE: CR %.2e, KR-alpha(0.5) %.2e, "
+                "KR-alpha(0) %.2e; max |KR - CR|/CR %.2e\n", rate, c.err[0].back(), c.err[1].back(), c.err[2].back(),
+                c.cr_kr.back());
+  }
+  return c;
+}
+
 // Peak-drift error of each integrator vs CVODE for Δt = 1/256 … 1/2048 s. Asserted: at
 // Δt = 1/1024 s every integrator is within 0.1 % of CVODE; the errors and the CR–KR-α
 // difference shrink as Δt is refined (by a factor > 1.5 per halving).
@@ -60,19 +81,10 @@ TEST(IntegratorConvergence, LinearThreeStoryKrAlphaAndCrReachCvodePeaks) {
   std::printf("[ measured ] linear 3-story, El Centro 0-20 s, CVODE peak drifts %.6f %.6f %.6f in\n", ref(0), ref(1),
               ref(2));
   const std::vector<IntegratorSettings> kinds{{"cr", 1.0}, {"kr_alpha", 0.5}, {"kr_alpha", 0.0}};
-  std::vector<std::vector<double>> err(kinds.size());
-  std::vector<double> cr_kr;
-  for (double steps_per_s : {256.0, 512.0, 1024.0, 2048.0}) {
-    std::vector<Eigen::VectorXd> peaks;
-    for (std::size_t i = 0; i < kinds.size(); ++i) {
-      peaks.push_back(peak_drifts(b, gm, kinds[i], 1.0 / steps_per_s, 20.0));
-      err[i].push_back(max_rel(peaks.back(), ref));
-    }
-    cr_kr.push_back(std::max(max_rel(peaks[1], peaks[0]), max_rel(peaks[2], peaks[0])));
-    std::printf("[ measured ]   dt 1/%.0f s: max peak-drift error vs CVODE: CR %.2e, KR-alpha(0.5) %.2e, "
-                "KR-alpha(0) %.2e; max |KR - CR|/CR %.2e\n", steps_per_s, err[0].back(), err[1].back(), err[2].back(),
-                cr_kr.back());
-  }
+  const Convergence c = convergence(kinds, {256.0, 512.0, 1024.0, 2048.0}, ref,
+                                    [&](const IntegratorSettings& k, double dt) { return peak_drifts(b, gm, k, dt, 20.0); });
+  const auto& err = c.err;
+  const auto& cr_kr = c.cr_kr;
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     EXPECT_LT(err[i][2], 1e-3) << kinds[i].kind << " " << kinds[i].rho_inf << " at 1/1024 s";
     EXPECT_LT(err[i][3], err[i][0]) << kinds[i].kind << " " << kinds[i].rho_inf;
@@ -81,17 +93,8 @@ TEST(IntegratorConvergence, LinearThreeStoryKrAlphaAndCrReachCvodePeaks) {
   EXPECT_LT(cr_kr[2] * 1.5, cr_kr[1]);
 }
 
-damper::BrfdParams lugre_damper() {
-  damper::BrfdParams d;
-  d.kind = damper::DamperKind::passive_lugre;
-  d.lugre.sigma0_kip_per_in = 60.0;
-  d.lugre.sigma1_kip_s_per_in = 0.5;
-  d.lugre.sigma2_kip_s_per_in = 0.05;
-  d.lugre.fs_fwd_kip = d.lugre.fs_bwd_kip = 24;  // ~7 % of the story-1 shear at peak drift
-  d.lugre.fc_fwd_kip = d.lugre.fc_bwd_kip = 20;
-  d.lugre.vs_in_per_s = 0.5;
-  return d;
-}
+// Friction ~7 % of the story-1 shear at peak drift.
+damper::BrfdParams lugre_damper() { return test_dampers::lugre_damper(24, 20); }
 
 // With the damper fed back at x_{n+1} the loop converges more slowly (KR-α weighs the force
 // at n+1−α_f: first order in Δt), so the bound at 1/1024 s is 0.2 % (measured 0.009 % CR,
@@ -99,11 +102,7 @@ damper::BrfdParams lugre_damper() {
 TEST(IntegratorConvergence, StepLoopWithLugreKrAlphaAndCrReachCvodePeaks) {
   const std::string record = kRecords + "/ImperialValley1940_ElCentroArray9_180_NS_RSN6.AT2";
   const GroundMotion gm = read_ground_motion(record);
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {0.5, 0.5, 0.5};
-  p.story_stiffness_kip_per_in = {300, 250, 200};
-  p.damping_modes = {1, 2};
-  p.damping_ratios = {0.05, 0.05};
+  BuildingParams p = test_buildings::opensees_three_story();
   p.dampers = {{1, 1.0}};
   const ShearBuilding b(p);
   ReferenceOptions opt;
@@ -114,21 +113,13 @@ TEST(IntegratorConvergence, StepLoopWithLugreKrAlphaAndCrReachCvodePeaks) {
   std::printf("[ measured ] 3-story + LuGre BRFD, El Centro 0-20 s, CVODE peak drifts %.6f %.6f %.6f in\n", ref(0),
               ref(1), ref(2));
   const std::vector<IntegratorSettings> kinds{{"cr", 0.5}, {"kr_alpha", 0.5}, {"kr_alpha", 0.0}};
-  std::vector<std::vector<double>> err(kinds.size());
-  std::vector<double> cr_kr;
-  for (double steps_per_s : {512.0, 1024.0, 2048.0}) {
-    std::vector<Eigen::VectorXd> peaks;
-    for (std::size_t i = 0; i < kinds.size(); ++i) {
-      server::RunConfig c = testing_support::in_process_config(p, record, lugre_damper(), 1.0 / steps_per_s, 20.0);
-      c.integrator = kinds[i];
-      peaks.push_back(testing_support::run_in_process(c).peak_abs_drift_in(b));
-      err[i].push_back(max_rel(peaks.back(), ref));
-    }
-    cr_kr.push_back(std::max(max_rel(peaks[1], peaks[0]), max_rel(peaks[2], peaks[0])));
-    std::printf("[ measured ]   dt 1/%.0f s: max peak-drift error vs CVODE: CR %.2e, KR-alpha(0.5) %.2e, "
-                "KR-alpha(0) %.2e; max |KR - CR|/CR %.2e\n", steps_per_s, err[0].back(), err[1].back(), err[2].back(),
-                cr_kr.back());
-  }
+  const Convergence conv = convergence(kinds, {512.0, 1024.0, 2048.0}, ref, [&](const IntegratorSettings& k, double dt) {
+    server::RunConfig c = testing_support::in_process_config(p, record, lugre_damper(), dt, 20.0);
+    c.integrator = k;
+    return testing_support::run_in_process(c).peak_abs_drift_in(b);
+  });
+  const auto& err = conv.err;
+  const auto& cr_kr = conv.cr_kr;
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     EXPECT_LT(err[i][1], 2e-3) << kinds[i].kind << " " << kinds[i].rho_inf << " at 1/1024 s";
     EXPECT_LT(err[i][2], err[i][0]) << kinds[i].kind << " " << kinds[i].rho_inf;

@@ -1,3 +1,5 @@
+#include "test_buildings.h"
+#include "test_dampers.h"
 #include "validation/monolithic_reference.h"
 
 #include "damper/model/brfd_config.h"
@@ -16,14 +18,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 const std::string kRecords = PROJECT_RECORDS_DIR;
 
-BuildingParams sdof_params(double m, double k, double zeta) {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {m};
-  p.story_stiffness_kip_per_in = {k};
-  p.damping_modes = {1, 1};
-  p.damping_ratios = {zeta, zeta};
-  return p;
-}
+using test_buildings::sdof;
 
 GroundMotion zero_motion(double dt, double duration) {
   GroundMotion gm;
@@ -37,7 +32,7 @@ GroundMotion zero_motion(double dt, double duration) {
 // 1e-7 of the amplitude; bound 1e-5 in for x0 = 1 in.
 TEST(MonolithicReference, SdofFreeVibrationMatchesClosedForm) {
   const double m = 0.2, k = 150.0, zeta = 0.05, x0 = 1.0, v0 = -3.0;
-  const ShearBuilding b(sdof_params(m, k, zeta));
+  const ShearBuilding b(sdof(m, k, zeta));
   const testing::Sdof exact{std::sqrt(k / m), zeta};
   ReferenceOptions opt;
   opt.duration_s = 3.0;
@@ -59,7 +54,7 @@ TEST(MonolithicReference, SdofFreeVibrationMatchesClosedForm) {
 // 1e-5 of the peak response.
 TEST(MonolithicReference, SdofHarmonicMatchesClosedForm) {
   const double m = 0.2, k = 150.0, zeta = 0.05;
-  const ShearBuilding b(sdof_params(m, k, zeta));
+  const ShearBuilding b(sdof(m, k, zeta));
   const testing::Sdof exact{std::sqrt(k / m), zeta};
   const double a_g = 0.3, big_omega = 2 * kPi * 3.0, t_end = 4.0, h_rec = 1.0 / 8192;
   GroundMotion gm;
@@ -80,7 +75,7 @@ TEST(MonolithicReference, SdofHarmonicMatchesClosedForm) {
 }
 
 TEST(MonolithicReference, DamperCountMustMatchPlacements) {
-  BuildingParams p = sdof_params(0.2, 150, 0.02);
+  BuildingParams p = sdof(0.2, 150, 0.02);
   p.dampers = {{1, 1.0}};
   const ShearBuilding b(p);
   ReferenceOptions opt;
@@ -93,7 +88,7 @@ TEST(MonolithicReference, DamperCountMustMatchPlacements) {
 // A SUNDIALS failure becomes a SolverError naming the function (here CVode runs out of its
 // internal step budget).
 TEST(MonolithicReference, SundialsFailureNamesTheFunction) {
-  const ShearBuilding b(sdof_params(0.2, 150, 0.02));
+  const ShearBuilding b(sdof(0.2, 150, 0.02));
   ReferenceOptions opt;
   opt.duration_s = 1.0;
   opt.output_dt_s = 0.5;
@@ -112,25 +107,9 @@ TEST(MonolithicReference, SundialsFailureNamesTheFunction) {
 
 // ---- CR with the LuGre BRFD vs the monolithic CVODE reference on El Centro 1940 ----
 
-damper::BrfdParams lugre_damper() {
-  damper::BrfdParams d;
-  d.kind = damper::DamperKind::passive_lugre;
-  d.lugre.sigma0_kip_per_in = 60.0;
-  d.lugre.sigma1_kip_s_per_in = 0.5;
-  d.lugre.sigma2_kip_s_per_in = 0.05;
-  d.lugre.fs_fwd_kip = d.lugre.fs_bwd_kip = 2.4;
-  d.lugre.fc_fwd_kip = d.lugre.fc_bwd_kip = 2.0;
-  d.lugre.vs_in_per_s = 0.5;
-  return d;
-}
+using test_dampers::lugre_damper;
 
-BuildingParams three_story(double m, double k) {
-  BuildingParams p;
-  p.story_mass_kip_s2_per_in = {m, m, m};
-  p.story_stiffness_kip_per_in = {k, k, k};
-  p.dampers = {{1, 1.0}};
-  return p;
-}
+BuildingParams three_story(double m, double k) { return test_buildings::uniform_three_story(m, k, true); }
 
 struct Comparison {
   Eigen::VectorXd ref_drift, cr_drift, no_damper_drift;
