@@ -14,6 +14,23 @@ namespace common {
 
 namespace {
 std::string system_error_text(int err) { return std::strerror(err); }
+
+// Writes all of `text` to fd (a write interrupted by a signal is repeated). Returns 0, or the
+// errno of the failed write.
+int write_all(int fd, const std::string& text) {
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return 0;
+}
 }  // namespace
 
 bool fsync_path(const std::string& path) {
@@ -29,18 +46,9 @@ bool fsync_path(const std::string& path) {
 void write_file(const std::string& path, const std::string& text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw FileWriteError("cannot write " + path + ": " + system_error_text(errno));
-  const char* p = text.data();
-  std::size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      throw FileWriteError("cannot write " + path + " (write): " + system_error_text(err));
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+  if (const int err = write_all(fd, text)) {
+    ::close(fd);
+    throw FileWriteError("cannot write " + path + " (write): " + system_error_text(err));
   }
   if (::close(fd) != 0) throw FileWriteError("cannot write " + path + " (close): " + system_error_text(errno));
 }
@@ -92,16 +100,9 @@ void write_file_atomic(const std::string& path, const std::string& text) {
     ::unlink(tmp.c_str());
     throw FileWriteError("cannot write " + path + " (" + what + "): " + system_error_text(err));
   };
-  const char* p = text.data();
-  std::size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("write");
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+  if (const int err = write_all(fd, text)) {
+    errno = err;
+    fail("write");
   }
   if (::fsync(fd) != 0) fail("fsync");
   if (::close(fd) != 0) {
