@@ -3,6 +3,7 @@
 #include "common/strict_yaml.h"
 #include "damper/rig/rig_config.h"
 #include "damper/rig/rig_node.h"
+#include "messages/node_main.h"
 
 #include <CLI/CLI.hpp>
 
@@ -21,15 +22,7 @@ int main(int argc, char** argv) {
   app.add_option("--key-file", o.key_file, "HMAC key file (64 hex characters, mode 0600)");
   app.add_option("--log-dir", o.log_dir, "folder for rig-commands.csv and rig-summary.json");
   app.add_flag("--lab-network", o.lab_network, "the URL is a lab network: allow multicast outside a netns");
-  // Exit codes as hybridsim's (README "Exit codes"): a command-line error is bad input, 2.
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    if (app.count("--run-id") > 0 && o.run_id.empty())
-      throw std::invalid_argument("--run-id: must not be empty (omit it to answer any run)");
+  return messages::run_node_main("brfd-rig", app, argc, argv, [&] {
     o.config = damper::rig::load_rig_config(config_path);
     if (check_only) {
       std::cout << damper::rig::rig_config_to_yaml(o.config);
@@ -38,8 +31,5 @@ int main(int argc, char** argv) {
     if (o.url.empty()) throw std::invalid_argument("--url is required");
     if (o.key_file.empty()) throw std::invalid_argument("--key-file is required: commands are authenticated");
     return damper::rig::run_rig(o);
-  } catch (const std::exception& e) {
-    std::cerr << "brfd-rig: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }

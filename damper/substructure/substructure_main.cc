@@ -3,6 +3,7 @@
 #include "damper/model/brfd_config.h"
 #include "damper/physical/physical_node.h"
 #include "damper/substructure/substructure_node.h"
+#include "messages/node_main.h"
 #include "messages/run_key.h"
 
 #include <CLI/CLI.hpp>
@@ -34,15 +35,7 @@ int main(int argc, char** argv) {
   std::string on_bad_message = "drop";
   app.add_option("--on-bad-message", on_bad_message, "a malformed, foreign, forged or replayed message: drop or stop")
       ->check(CLI::IsMember({"drop", "stop"}));
-  // Exit codes as hybridsim's (README "Exit codes"): a command-line error is bad input, 2.
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    if (app.count("--run-id") > 0 && o.run_id.empty())
-      throw std::invalid_argument("--run-id: must not be empty (omit it to answer any run)");
+  return messages::run_node_main("brfd-substructure", app, argc, argv, [&] {
     if (!o.echo) {
       if (model_config.empty()) throw std::invalid_argument("--model-config is required (except with --echo)");
       o.model = damper::load_brfd_params(model_config);
@@ -62,8 +55,5 @@ int main(int argc, char** argv) {
       return damper::physical::run_physical_substructure(p);
     }
     return damper::run_substructure_node(o);
-  } catch (const std::exception& e) {
-    std::cerr << "brfd-substructure: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }
