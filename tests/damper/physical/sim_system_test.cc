@@ -22,6 +22,7 @@
 #include "messages/message_auth.h"
 #include "server/run/run_config.h"
 #include "test_paths.h"
+#include "trip_cases.h"
 
 #include <gtest/gtest.h>
 
@@ -338,12 +339,7 @@ TEST(PhysicalSimulated, AtsCutsMeasuredDelayAndRmsTrackingErrorWith20msEmulatedD
   }
 }
 
-struct TripCase {
-  const char* name;
-  const char* limit_key;
-  double value;
-  bool ats;
-};
+using trip_cases::TripCase;
 
 class SimulatedSafetyTrip : public ::testing::TestWithParam<TripCase> {};
 
@@ -352,8 +348,8 @@ TEST_P(SimulatedSafetyTrip, TripsHoldsRampsToSafeAndNoOutOfLimitCommandReachesTh
   const std::string key = tc.limit_key;
   Scenario sc = default_scenario();
   sc.steps = 5 * 1024;
-  const double stroke = key == "stroke_in" ? tc.value : 2.0;
-  const double rate = key == "velocity_in_per_s" ? tc.value : 20.0;
+  const double stroke = trip_cases::rig_stroke_in(tc);
+  const double rate = trip_cases::rig_rate_in_per_s(tc);
   sc.rig.limits.stroke_in = stroke;
   sc.rig.limits.velocity_in_per_s = rate;
   sc.rig.limits.actuator_min_in = 0.30;
@@ -404,13 +400,7 @@ TEST_P(SimulatedSafetyTrip, TripsHoldsRampsToSafeAndNoOutOfLimitCommandReachesTh
   EXPECT_NEAR(o.commands.back().drum_displacement_in, 0.0, 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(EachLimit, SimulatedSafetyTrip,
-                         ::testing::Values(TripCase{"stroke", "stroke_in", 0.3, true},
-                                           TripCase{"command_rate", "velocity_in_per_s", 3.0, true},
-                                           TripCase{"actuator_force", "actuator_force_lb", 800.0, true},
-                                           TripCase{"drift", "drift_in", 0.3, true},
-                                           TripCase{"tracking", "tracking_error_in", 0.03, false}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(EachLimit, SimulatedSafetyTrip, trip_cases::all(), trip_cases::name);
 
 TEST(PhysicalSimulated, ServerGoesSilentAndTheSubstructureTripsOnItsCommandWatchdog) {
   Scenario sc = default_scenario();

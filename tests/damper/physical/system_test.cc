@@ -17,6 +17,7 @@
 #include "server/run/hybrid_run.h"
 #include "server/run/substructure_session.h"
 #include "test_paths.h"
+#include "trip_cases.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -202,12 +203,7 @@ TEST(PhysicalSystem, AtsCutsMeasuredDelayAndRmsTrackingErrorWith20msEmulatedDela
 
 // ---------------------------------------------------------------------------------------------
 
-struct TripCase {
-  const char* name;
-  const char* limit_key;  // rig.limits.<key>
-  double value;
-  bool ats;
-};
+using trip_cases::TripCase;
 
 class SafetyTrip : public ::testing::TestWithParam<TripCase> {};
 
@@ -217,8 +213,8 @@ TEST_P(SafetyTrip, TripsHoldsRampsToSafeAndNoOutOfLimitCommandReachesTheRig) {
   const std::string dir = test_support::fresh_temp_dir(std::string("trip-") + tc.name);
   // The rig enforces the same stroke/rate/actuator limits, so its own count of out-of-limit
   // commands received is a second, independent proof.
-  const double stroke = key == "stroke_in" ? tc.value : 2.0;
-  const double rate = key == "velocity_in_per_s" ? tc.value : 20.0;
+  const double stroke = trip_cases::rig_stroke_in(tc);
+  const double rate = trip_cases::rig_rate_in_per_s(tc);
   const std::string rig = write_rig_config(dir, [&](YAML::Node& r) {
     r["limits"]["stroke_in"] = stroke;
     r["limits"]["velocity_in_per_s"] = rate;
@@ -307,13 +303,7 @@ TEST_P(SafetyTrip, TripsHoldsRampsToSafeAndNoOutOfLimitCommandReachesTheRig) {
   EXPECT_NEAR(log.back().drum, 0.0, 1e-12);  // the safe state
 }
 
-INSTANTIATE_TEST_SUITE_P(EachLimit, SafetyTrip,
-                         ::testing::Values(TripCase{"stroke", "stroke_in", 0.3, true},
-                                           TripCase{"command_rate", "velocity_in_per_s", 3.0, true},
-                                           TripCase{"actuator_force", "actuator_force_lb", 800.0, true},
-                                           TripCase{"drift", "drift_in", 0.3, true},
-                                           TripCase{"tracking", "tracking_error_in", 0.03, false}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(EachLimit, SafetyTrip, trip_cases::all(), trip_cases::name);
 
 TEST(PhysicalSystem, ElectricActuatorRangeRefusesTheFirstCommandAndNothingIsPublished) {
   const std::string dir = test_support::fresh_temp_dir("trip-actuator-range");
