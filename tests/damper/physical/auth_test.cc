@@ -2,6 +2,7 @@
 // is what the docs say (a test vector a lab can check its bridge against), and the gate
 // rejects forged, tampered, foreign-run, replayed and stale commands, each with its reason.
 // The same over LCM against a running brfd-rig is in system_test.cc.
+#include "actuator_commands.h"
 #include "damper/physical/command_auth.h"
 #include "messages/run_key.h"
 #include "run_process.h"
@@ -24,15 +25,7 @@ RunKey key_of(uint8_t first) {
 }
 
 hybrid_lcm::actuator_command_t command(int64_t utime, int64_t sequence) {
-  hybrid_lcm::actuator_command_t c;
-  c.utime = utime;
-  c.run_id = "run-1";
-  c.sequence = sequence;
-  c.drum_displacement_in = 0.25;
-  c.actuator1_position_in = 0.655;
-  c.actuator2_position_in = 0.8559;
-  c.mode = hybrid_lcm::actuator_command_t::MODE_RUN;
-  return c;
+  return actuator_commands::run_command("run-1", sequence, utime, 0.25);
 }
 
 std::string hex(const std::vector<uint8_t>& v) {

@@ -21,6 +21,7 @@
 #include "messages/in_memory_lcm.h"
 #include "messages/message_auth.h"
 #include "server/run/run_config.h"
+#include "actuator_commands.h"
 #include "test_paths.h"
 #include "trip_cases.h"
 
@@ -465,17 +466,7 @@ TEST(PhysicalSimulated, RunningRigRejectsForgedReplayedAndStaleCommandsAndSaysSo
   ASSERT_TRUE(pump_until([&] { return frames > 5; }));
 
   damper::physical::CommandSigner signer(key);
-  auto make = [&](int64_t seq, int64_t utime) {
-    actuator_command_t c;
-    c.utime = utime;
-    c.run_id = "auth-run";
-    c.sequence = seq;
-    c.drum_displacement_in = 0.0;
-    c.actuator1_position_in = 0.655;
-    c.actuator2_position_in = 0.8559;
-    c.mode = actuator_command_t::MODE_RUN;
-    return c;
-  };
+  auto make = [](int64_t seq, int64_t utime) { return actuator_commands::run_command("auth-run", seq, utime, 0.0); };
   auto send = [&](const actuator_command_t& c) { messages::publish_message(*test_lcm, ch.actuator_command(), c); };
 
   auto good = make(1, bus.utime());

@@ -16,6 +16,7 @@
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
 #include "server/run/substructure_session.h"
+#include "actuator_commands.h"
 #include "test_paths.h"
 #include "trip_cases.h"
 
@@ -45,7 +46,6 @@ using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 
 // Copies of the actuator_command_t MODE_ constants (the generated ones are not ODR-usable).
-constexpr int kModeRun = hybrid_lcm::actuator_command_t::MODE_RUN;
 constexpr int kModeHold = hybrid_lcm::actuator_command_t::MODE_HOLD;
 constexpr int kModeSafeRamp = hybrid_lcm::actuator_command_t::MODE_SAFE_RAMP;
 constexpr int kModeEnd = hybrid_lcm::actuator_command_t::MODE_END;
@@ -489,17 +489,7 @@ TEST(PhysicalSystem, RunningRigRejectsForgedReplayedAndStaleCommandsAndSaysSo) {
   ASSERT_TRUE(pump_until([&] { return w.frames > 5; })) << test_support::read_text(dir + "/rig.log");
 
   damper::physical::CommandSigner signer(key);
-  auto make = [&](int64_t seq, int64_t utime) {
-    hybrid_lcm::actuator_command_t c;
-    c.utime = utime;
-    c.run_id = "auth-run";
-    c.sequence = seq;
-    c.drum_displacement_in = 0.0;
-    c.actuator1_position_in = 0.655;
-    c.actuator2_position_in = 0.8559;
-    c.mode = kModeRun;
-    return c;
-  };
+  auto make = [](int64_t seq, int64_t utime) { return actuator_commands::run_command("auth-run", seq, utime, 0.0); };
   auto send = [&](const hybrid_lcm::actuator_command_t& c) {
     std::vector<uint8_t> b(static_cast<std::size_t>(c.getEncodedSize()));
     c.encode(b.data(), 0, static_cast<int>(b.size()));
