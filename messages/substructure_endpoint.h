@@ -45,6 +45,20 @@ struct EndpointSettings {
   BadMessagePolicy on_bad_message = BadMessagePolicy::drop;
 };
 
+/// The endpoint settings of a node (the virtual node, substructure_node.h; the physical lab
+/// node, physical_node.h) from the fields every node's options have (channels, run_id,
+/// heartbeat_period_s, on_bad_message) and the run key.
+template <typename NodeOptions>
+EndpointSettings endpoint_settings_of(const NodeOptions& o, const RunKey& key) {
+  EndpointSettings e;
+  e.channels = o.channels;
+  e.run_id = o.run_id;
+  e.heartbeat_period_s = o.heartbeat_period_s;
+  e.key = key;
+  e.on_bad_message = o.on_bad_message;
+  return e;
+}
+
 class SubstructureEndpoint {
  public:
   class Listener {

@@ -35,17 +35,6 @@ const std::vector<std::string>& record_columns() {
   return c;
 }
 
-messages::EndpointSettings endpoint_settings(const PhysicalNodeOptions& o, const RunKey& key) {
-  messages::EndpointSettings e;
-  e.channels = o.channels;
-  e.run_id = o.run_id;
-  e.sender = "brfd-substructure";
-  e.heartbeat_period_s = o.heartbeat_period_s;
-  e.on_bad_message = o.on_bad_message;
-  e.key = key;
-  return e;
-}
-
 }  // namespace
 
 using Phase = PhysicalNode::Phase;
@@ -62,7 +51,7 @@ PhysicalNode::PhysicalNode(messages::LcmInterface& lcm, const PhysicalNodeOption
       safety_(o.settings.limits, period_),
       act_(lcm, o.channels, key, safety_),
       ats_(o.settings.ats, period_),
-      endpoint_(lcm, endpoint_settings(o, key), *this) {
+      endpoint_(lcm, messages::endpoint_settings_of(o, key), *this) {
   act_.count_bad_frames_in(&endpoint_.bad_message_log());
   hold_positions_.actuator1_in = o.model.semiactive.actuator1_initial_in;
   hold_positions_.actuator2_in = o.model.semiactive.actuator2_initial_in;

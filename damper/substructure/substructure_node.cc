@@ -5,23 +5,8 @@
 
 namespace damper {
 
-namespace {
-
-messages::EndpointSettings endpoint_settings(const SubstructureNodeOptions& o) {
-  messages::EndpointSettings e;
-  e.channels = o.channels;
-  e.run_id = o.run_id;
-  e.sender = "brfd-substructure";
-  e.heartbeat_period_s = o.heartbeat_period_s;
-  e.key = o.key;
-  e.on_bad_message = o.on_bad_message;
-  return e;
-}
-
-}  // namespace
-
 SubstructureNode::SubstructureNode(messages::LcmInterface& lcm, const SubstructureNodeOptions& o)
-    : o_(o), endpoint_(lcm, endpoint_settings(o), *this) {}
+    : o_(o), endpoint_(lcm, messages::endpoint_settings_of(o, o.key), *this) {}
 
 void SubstructureNode::advance(messages::TimePoint now) {
   if (finished()) return;
