@@ -246,7 +246,7 @@ std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
 std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
-    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0}));
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0}));
     c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
     c.push_back(library_case("transition_shape", "strong", {5.0}));
     c.push_back(own_backlash("strong", 0.08, 0.1));
@@ -254,16 +254,16 @@ std::vector<BenchCase> bench_cases(bool quick) {
     c.push_back(none_case(false));
     return c;
   }
-  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0}));
-  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0}));
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0}));
   c.push_back(library_case("residual_static", "weak", {0.4, 0.2}));
   c.push_back(library_case("residual_static", "strong", {0.8, 0.1}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15}));
   c.push_back(library_case("asymmetry", "strong", {0.15, 0.3}));
-  c.push_back(library_case("velocity", "weak", {1.2, 0.1}));
-  c.push_back(library_case("velocity", "strong", {1.0, 0.25}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.0, 0.2, -0.08, 1.0, 0.05}));
   c.push_back(library_case("pretension", "weak", {0.5, 0.5}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8}));
   c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0}));

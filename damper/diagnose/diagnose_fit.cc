@@ -201,6 +201,9 @@ ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& 
   for (int it = 0; it < std::max(1, settings.iterations); ++it) {
     if (space.dim() > 0 && settings.effect_evals > 0) {
       EffectObjective obj{&recs, &mask, &space, state, 0, INFINITY, {}};
+      // LN_BOBYQA's quadratic model needs more points in more dimensions: the budget per start is
+      // effect_evals for up to 2 parameters and grows in proportion to the dimension beyond.
+      const int budget = static_cast<int>(std::lround(settings.effect_evals * std::max(1.0, 0.5 * space.dim())));
       const std::vector<double> u0 = space.unit_of(state.effects, false);
       obj(u0);  // the start (null values, or the previous iteration's) is the reference
       if (it == 0) {
@@ -227,9 +230,9 @@ ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& 
             best_scan = u;
           }
         }
-        bobyqa(obj, best_scan, settings.effect_evals);
+        bobyqa(obj, best_scan, budget);
       }
-      bobyqa(obj, u0, settings.effect_evals);
+      bobyqa(obj, u0, budget);
       state.effects = space.apply(state.effects, obj.best_u);
       evals += obj.evaluations;
     }

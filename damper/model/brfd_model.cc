@@ -31,6 +31,25 @@ void BrfdModel::reset() {
   resp2_in_ = lag2_in_;
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
+  const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
+  rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
+}
+
+double BrfdModel::rate_factor(double speed) const {
+  const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
+  if (!ve || ve->rate_slope == 0.0) return 1.0;
+  const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_
+                                          : speed + VelocityEffect::kSpeedFloorInPerS;
+  return std::max(0.2, 1.0 + ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s));
+}
+
+double BrfdModel::engaged_share(double z) const {
+  const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
+  if (!b || (b->slack_in == 0.0 && b->retension_in == 0.0)) return 1.0;
+  const double over = std::abs(z) - b->slack_in;
+  if (over <= 0.0) return 0.0;
+  const double width = std::max(b->retension_in, 0.25 * b->slack_in);
+  return std::min(1.0, over / width);
 }
 
 double KineticFrictionCurve::at(double v) const {
@@ -98,6 +117,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in + e.self_energizing->drum_abs_per_in * std::abs(in.drum_disp_in));
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
+  if (e.velocity) factor *= rate_factor(speed);
   fc *= factor;
   fs *= factor;
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
@@ -190,14 +210,18 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   const double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
   double rate = v - std::abs(v) * shaped;
+  const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
+  if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > b->slack_in) rate *= b->release_ratio;
   if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
   return rate;
 }
 
 double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const LugreParams& p = params_.lugre;
-  return f.tension * spring_force_kip(z) + p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
-         p.sigma2_kip_s_per_in * v;
+  const double viscous = p.sigma2_kip_s_per_in +
+                         (params_.effects.velocity ? params_.effects.velocity->added_viscous_kip_s_per_in : 0.0);
+  return f.tension * spring_force_kip(z) +
+         engaged_share(z) * (p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) + viscous * v);
 }
 
 double BrfdModel::bristle_rate(double z_in, const DamperInput& in) const {
@@ -257,6 +281,15 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const double speed = std::abs(v);
   if (e.residual_static)
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);
+  if (e.velocity) {
+    // Aging law dθ/dt = 1 − ṽ θ/D with the speed held over the step: exact.
+    const double d = e.velocity->memory_in;
+    if (d > 0.0) {
+      const double vs = speed + VelocityEffect::kSpeedFloorInPerS;
+      const double steady = d / vs;
+      rate_state_s_ = steady + (rate_state_s_ - steady) * std::exp(-vs * dt_s / d);
+    }
+  }
   const Frame f = frame(in);
   const double relax = f.relax;  // w / τ_r of residual_static, 1/s
   const double target_pos = f.target_pos, target_neg = f.target_neg;
@@ -266,13 +299,15 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const double k = speed / f.g;  // |v| / g(v)
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
   const bool shaped = e.transition_shape && e.transition_shape->exponent != 1.0;
-  const bool soft = e.backlash && e.backlash->retension_in > 0.0;
+  const bool soft = e.backlash && (e.backlash->retension_in > 0.0 || e.backlash->release_ratio != 1.0);
   if (shaped || soft) {
     // Nonlinear bristle law (Dahl exponent, or the soft re-tensioning spring): RK4 sub-steps,
     // enough to keep h × (largest rate constant) <= 0.25.
     const double alpha = shaped ? e.transition_shape->exponent : 1.0;
     const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
-    const double stiff = k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 + relax;
+    const double release = e.backlash ? e.backlash->release_ratio : 1.0;
+    const double stiff =
+        k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 * release + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
     const double h = dt_s / n;
     double z = z_in_;

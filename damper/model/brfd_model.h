@@ -162,6 +162,9 @@ class BrfdModel final : public DamperModel {
   double resp1_rate_ = 0.0, resp2_rate_ = 0.0;  ///< dy_k/dt, in/s
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
+  double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
+  double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
+  double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)
 };
 
 /// The damper model a BrfdParams describes (the factory every user of a config calls).

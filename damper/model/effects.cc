@@ -23,11 +23,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   ModelEffects e;
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
-    b.allow_only({"slack_in", "retension_in", "stiffness_ratio"});
+    b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
     x.stiffness_ratio = b.get_double_in("stiffness_ratio", 1.0, 0.01, 100.0);
+    x.release_ratio = b.get_double_in("release_ratio", 1.0, 1.0, 1000.0);
     e.backlash = x;
   }
   if (s.has("residual_static")) {
@@ -57,10 +58,15 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("velocity")) {
     const common::YamlSection v = s.section("velocity");
-    v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in"});
+    v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
+                  "reference_speed_in_per_s", "memory_in"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
+    x.added_viscous_kip_s_per_in = v.get_double_in("added_viscous_kip_s_per_in", 0.0, -100.0, 100.0);
+    x.rate_slope = v.get_double_in("rate_slope", 0.0, -2.0, 2.0);
+    x.reference_speed_in_per_s = v.get_double_in("reference_speed_in_per_s", 1.0, 1e-4, 1e4);
+    x.memory_in = v.get_double_in("memory_in", 0.0, 0.0, 100.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -115,7 +121,14 @@ EffectSpec make_spec(std::string name, std::string title, std::string equation,
   s.title = std::move(title);
   s.equation = std::move(equation);
   s.parameters = std::move(parameters);
-  s.set = [member, build](ModelEffects& e, const std::vector<double>& theta) { e.*member = build(theta); };
+  const std::size_t n = s.parameters.size();
+  const std::string effect_name = s.name;
+  s.set = [member, build, n, effect_name](ModelEffects& e, const std::vector<double>& theta) {
+    if (theta.size() != n)
+      throw std::invalid_argument("effect " + effect_name + ": " + std::to_string(theta.size()) +
+                                  " parameter values given, it has " + std::to_string(n));
+    e.*member = build(theta);
+  };
   s.get = [member, read](const ModelEffects& e) { return read(*(e.*member)); };
   s.present = [member](const ModelEffects& e) { return static_cast<bool>(e.*member); };
   s.remove = [member](ModelEffects& e) { (e.*member).reset(); };
@@ -125,22 +138,26 @@ EffectSpec make_spec(std::string name, std::string title, std::string equation,
 std::vector<EffectSpec> build_library() {
   std::vector<EffectSpec> lib;
   lib.push_back(make_spec<std::optional<BacklashEffect> ModelEffects::*, BacklashEffect>(
-      "backlash", "band slack after reversal: force near zero over a drum travel 2*slack, gradual re-tension",
+      "backlash", "band slack after reversal: fast release, force near zero over a drum travel 2*slack, gradual re-tension",
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
-      "beyond; dz/dt = v - |v| S(z)/g(v); F = S(z) + sigma1 dz/dt + sigma2 v",
+      "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) (sigma1 "
+      "dz/dt + sigma2 v), e = engaged share",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
-       {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true}},
+       {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
+       {"release_ratio", 1.0, 30.0, 1.0, 4.0, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
         b.slack_in = t[0];
         b.retension_in = t[1];
         b.stiffness_ratio = t[2];
+        b.release_ratio = t[3];
         return b;
       }),
-      std::function<std::vector<double>(const BacklashEffect&)>(
-          [](const BacklashEffect& b) { return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio}; })));
+      std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
+        return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio};
+      })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "residual static force after motion stops: at rest the force settles to ratio*Fc",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.2 s), S(z_r) = sign(z) ratio Fc",
@@ -185,18 +202,29 @@ std::vector<EffectSpec> build_library() {
       std::function<std::vector<double>(const AsymmetryEffect&)>(
           [](const AsymmetryEffect& a) { return std::vector<double>{a.level, a.stiffness}; })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
-      "velocity", "velocity dependence mismatch: Stribeck shape exponent and rate-dependent friction",
-      "g(v) = Fc + (Fs - Fc) exp(-|v/vs|^n) + c_v |v|",
-      {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true}, {"viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false}},
+      "velocity", "velocity dependence: Stribeck shape, rate-dependent capacity, parallel viscous force, log-rate levels with slip memory",
+      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v/vs|^n) + c_v |v|; F += c_a v; phi = 1 + s ln(v~/v_r), v~ = |v| + 0.01 "
+      "seen through the aging law over a slip distance D",
+      {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
+       {"viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
+       {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
+       {"rate_slope", -0.3, 0.3, 0.0, -0.05, false},
+       {"reference_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true},
+       {"memory_in", 0.0, 0.3, 0.0, 0.05, false}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
         v.stribeck_exponent = t[0];
         v.viscous_kip_s_per_in = t[1];
+        v.added_viscous_kip_s_per_in = t[2];
+        v.rate_slope = t[3];
+        v.reference_speed_in_per_s = t[4];
+        v.memory_in = t[5];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
-        return std::vector<double>{v.stribeck_exponent, v.viscous_kip_s_per_in};
+        return std::vector<double>{v.stribeck_exponent, v.viscous_kip_s_per_in, v.added_viscous_kip_s_per_in,
+                                   v.rate_slope, v.reference_speed_in_per_s, v.memory_in};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension set by the actuators (Fs too; band force scales at once)",

@@ -9,13 +9,17 @@
 /// d drum displacement, v drum velocity, x_k actuator positions, z band/bristle state (in),
 /// b the base kinetic friction per direction, ΔFc the Eq. (4) increment (gain · (x − x')).
 ///
-///  - backlash (slack_in = δ, retension_in = ε, stiffness_ratio = k): band slack after a reversal,
-///    and the gradual re-tensioning of the other band (the three stages of Cao et al. 2015:
-///    release, dead zone, gradual re-engagement). The band spring has a dead zone, a soft onset and
-///    its own stiffness k σ0 (a taut band releases its force over a shorter travel than the lumped
-///    LuGre σ0, which also stands for the slack, suggests):
+///  - backlash (slack_in = δ, retension_in = ε, stiffness_ratio = k, release_ratio = r): band slack
+///    after a reversal, and the gradual re-tensioning of the other band (the three stages of Cao et
+///    al. 2015: release, dead zone, gradual re-engagement). The band spring has a dead zone, a soft
+///    onset and its own stiffness k σ0:
 ///      S(z) = k σ0 · sign(z) · h(max(|z| − δ, 0)),  h(u) = u²/(2ε) for u < ε, u − ε/2 beyond
-///      dz/dt = v − |v| S(z) / g(v),   F = S(z) + σ1 dz/dt + σ2 v
+///      dz/dt = R (v − |v| S(z) / g(v)),   F = S(z) + e(z) (σ1 dz/dt + σ2 v)
+///    R = r while the loaded band unloads (|z| > δ, v z < 0), else 1: the taut band lets its force go
+///    over a drum travel r times shorter than the friction interface takes it up (a stiff band in
+///    series with the compliant lining: release is the band's, re-loading the lining's).
+///    e(z) = min(max(|z| − δ, 0)/ε, 1) (a step at |z| = δ for ε = 0; e ≡ 1 for δ = ε = 0): while
+///    the band is slack the lining does not slide, so its damping and viscous force vanish too.
 ///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then its
 ///    stiffness rises linearly over a further ε of band stretch (ε = 0: the plain dead zone).
 ///  - residual_static (ratio = ρ, time_constant_s = τ_r): residual static force after motion
@@ -31,8 +35,16 @@
 ///  - asymmetry (level = a_F, stiffness = a_σ): direction asymmetry beyond per-direction Fc/Fs:
 ///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
 ///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0).
-///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v): velocity dependence:
-///      g(v) = Fc + (Fs − Fc) exp(−|v/v_s|^n) + c_v |v|   (paper: n = 2, c_v = 0)
+///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
+///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
+///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
+///    capacity, a viscous force in parallel with the friction (lubricant film, heated lining), and
+///    friction levels that follow the logarithm of the slip rate with a slip memory (the steady
+///    state of rate-and-state friction, Dieterich 1979 / Ruina 1983; s < 0 velocity weakening):
+///      g(v) = φ Fc + (φ Fs − φ Fc) exp(−|v/v_s|^n) + c_v |v|      (paper: n = 2, c_v = 0)
+///      F += c_a v (gated by e(z) like σ2 v)
+///      φ = max(0.2, 1 + s ln(ṽ / v_r)),  ṽ = D/θ,  dθ/dt = 1 − (|v| + v_f) θ / D  (aging law; D = 0:
+///      ṽ = |v| + v_f), v_f = 0.01 in/s; θ(0) = D/v_r (φ = 1 at the start).
 ///  - pretension (fs_share = β, instant_share = λ): friction follows the band pre-tension set by
 ///    the actuators. With N = (b + ΔFc)/b the tension ratio of Eq. (4):
 ///      Fs = Fs0 (1 + β ΔFc / b);  band force F = N_λ S(z) + σ1 dz/dt + σ2 v,
@@ -67,6 +79,7 @@ struct BacklashEffect {
   double slack_in = 0.0;      ///< δ: half the drum travel over which the force sits near zero, in
   double retension_in = 0.0;  ///< ε: band stretch over which the stiffness re-grows after the slack, in
   double stiffness_ratio = 1.0;  ///< k: band stiffness / σ0 (> 0)
+  double release_ratio = 1.0;    ///< r >= 1: how much faster the loaded band releases than it loads
 };
 /// Residual static force after motion stops (see file comment).
 struct ResidualStaticEffect {
@@ -90,6 +103,11 @@ struct AsymmetryEffect {
 struct VelocityEffect {
   double stribeck_exponent = 2.0;     ///< n of exp(−|v/v_s|^n); 2 in the paper
   double viscous_kip_s_per_in = 0.0;  ///< c_v: rate dependence of the friction capacity g(v)
+  double added_viscous_kip_s_per_in = 0.0;  ///< c_a: viscous force in parallel with the friction
+  double rate_slope = 0.0;                  ///< s: d(friction level)/d ln(slip rate); 0 = none
+  double reference_speed_in_per_s = 1.0;    ///< v_r: slip rate where φ = 1, in/s (> 0)
+  double memory_in = 0.0;                   ///< D: slip distance over which φ follows the rate, in
+  static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).
 struct PretensionEffect {

@@ -47,7 +47,7 @@ TEST(DiagnoseCli, NamesHiddenBacklashAndTheWrittenModelReproducesTheReport) {
     diagnose_test::write_json(t, files.back());
   }
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "--model", dir + "/model.yaml",
-                              "--measured", files[0], files[1], "--out", dir + "/out"});
+                              "--measured", files[0], files[1], "--effect-evals", "150", "--out", dir + "/out"});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::regex last(
       "confidence: backlash=[0-9.]+ [^\n]*\neffects=backlash nrmse_before=[0-9.e-]+ nrmse_after=[0-9.e-]+ "
