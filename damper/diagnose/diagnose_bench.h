@@ -52,6 +52,9 @@ struct BenchOptions {
   /// Also run the shapes of damper/synthetic (written blind by another author; see
   /// hidden_shape_cases()), or only those.
   bool hidden_shapes = false, only_hidden_shapes = false;
+  /// Drum motion of those records: "harmonic" (the paper's tests 1 and 4) or "earthquake" (two
+  /// broadband records, EarthquakeProfile of damper/synthetic, phases from the trial's seed).
+  std::string hidden_motion = "harmonic";
 };
 
 /// One trial's outcome.
@@ -80,7 +83,7 @@ std::vector<BenchCase> bench_cases(bool quick);
 /// force, viscous power law, asymmetry, none) at strength 0.5 and 1, on the paper's harmonic tests
 /// 1 and 4 (1024 Hz, 15 s), from configs/brfd-semiactive.yaml's model. Their family labels map to
 /// the library: displacement_friction -> self_energizing, velocity_friction and viscous -> velocity.
-std::vector<BenchCase> hidden_shape_cases(bool quick);
+std::vector<BenchCase> hidden_shape_cases(bool quick, bool earthquake = false);
 /// A one-second electric actuator move of a drive, x = x' - a sin(2π (t - t0)) for t0 <= t <
 /// t0 + 1 s (retract, then extend), on actuator 1, 2 or both.
 struct ActuatorPulse {

@@ -282,9 +282,10 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
       << "# Effects added: " << added << "; effects in the model: "
       << (result.effects.empty() ? std::string("none") : result.effects.names()) << "\n";
     y << "# Effect parameters: fitted on the measured records (" << result.validation << ").\n";
-    if (o.base == BaseSource::identify && !result.added.empty()) {
+    if (o.base == BaseSource::identify) {
       y << "# Base parameters per record: the LuGre block is NOT what the 'after' column used. Each record's\n"
-        << "# LuGre parameters are re-identified on its passive window with these effects on, exactly as\n"
+        << "# LuGre parameters are re-identified on its passive window"
+        << (result.effects.empty() ? "" : " with these effects on") << ", exactly as\n"
         << "# `hybridsim damper predict` does by default (x'_1, x'_2 from the record's first row); this\n"
         << "# reproduces the 'after' NRMSE printed by diagnose:\n";
       for (const RecordReport& r : result.records) {
@@ -294,13 +295,15 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
         y << "#   hybridsim damper predict --config model-updated.yaml --test " << r.path
           << (passive ? " --fit-window 0:" + w.str() : std::string()) << "   # nrmse=" << format_fixed(r.after.nrmse_std, 4) << "\n";
       }
-      y << "# The LuGre block below is one set for all records, identified on their passive windows jointly\n"
-        << "# with the effects on (for hybrid runs / --no-fit: NRMSE " ;
-      double u = 0.0;
-      for (const RecordReport& r : result.records) u += r.updated_config.nrmse_std;
-      y << format_fixed(u / static_cast<double>(std::max<std::size_t>(1, result.records.size())), 4) << " mean on these records).\n";
-    } else if (o.base == BaseSource::identify) {
-      y << "# No effect added: the model as given; bases per record identified as `hybridsim damper predict` does.\n";
+      if (result.added.empty()) {
+        y << "# No effect added: the LuGre block below is the --model file's (for hybrid runs / --no-fit).\n";
+      } else {
+        y << "# The LuGre block below is one set for all records, identified on their passive windows jointly\n"
+          << "# with the effects on (for hybrid runs / --no-fit: NRMSE " ;
+        double u = 0.0;
+        for (const RecordReport& r : result.records) u += r.updated_config.nrmse_std;
+        y << format_fixed(u / static_cast<double>(std::max<std::size_t>(1, result.records.size())), 4) << " mean on these records).\n";
+      }
     } else {
       y << "# Base: the starting model's LuGre block as is (diagnose --base model); x'_1, x'_2 from each record's\n"
         << "# first row. Reproduce 'after' with: hybridsim damper predict --no-fit --config model-updated.yaml --test <record>\n";

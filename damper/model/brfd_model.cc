@@ -114,7 +114,9 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   }
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
-    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in + e.self_energizing->drum_abs_per_in * std::abs(in.drum_disp_in));
+    const double ad = std::abs(in.drum_disp_in);
+    const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
+    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in + e.self_energizing->drum_abs_per_in * grow);
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
   if (e.velocity) factor *= rate_factor(speed);

@@ -79,11 +79,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
-    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in"});
+    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
     x.drum_abs_per_in = p.get_double_in("drum_abs_per_in", 0.0, -5.0, 5.0);
+    x.abs_exponent = p.get_double_in("abs_exponent", 1.0, 0.1, 10.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -105,6 +106,9 @@ std::string effects_to_yaml(const ModelEffects& e) {
     const std::vector<double> theta = spec.get(e);
     for (std::size_t k = 0; k < theta.size(); ++k)
       o << "    " << spec.parameters[k].name << ": " << theta[k] << "\n";
+    // Config-only parameter (not fitted by diagnose: in steady sliding it is the same as c_a).
+    if (spec.name == "velocity" && e.velocity->viscous_kip_s_per_in != 0.0)
+      o << "    viscous_kip_s_per_in: " << e.velocity->viscous_kip_s_per_in << "\n";
   }
   return o.str();
 }
@@ -203,10 +207,9 @@ std::vector<EffectSpec> build_library() {
           [](const AsymmetryEffect& a) { return std::vector<double>{a.level, a.stiffness}; })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape, rate-dependent capacity, parallel viscous force, log-rate levels with slip memory",
-      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v/vs|^n) + c_v |v|; F += c_a v; phi = 1 + s ln(v~/v_r), v~ = |v| + 0.01 "
-      "seen through the aging law over a slip distance D",
+      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v/vs|^n); F += c_a v; phi = 1 + s ln(v~/v_r), v~ = |v| + 0.01 "
+      "seen through the aging law over a slip distance D (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
-       {"viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"rate_slope", -0.3, 0.3, 0.0, -0.05, false},
        {"reference_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true},
@@ -215,16 +218,15 @@ std::vector<EffectSpec> build_library() {
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
         v.stribeck_exponent = t[0];
-        v.viscous_kip_s_per_in = t[1];
-        v.added_viscous_kip_s_per_in = t[2];
-        v.rate_slope = t[3];
-        v.reference_speed_in_per_s = t[4];
-        v.memory_in = t[5];
+        v.added_viscous_kip_s_per_in = t[1];
+        v.rate_slope = t[2];
+        v.reference_speed_in_per_s = t[3];
+        v.memory_in = t[4];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
-        return std::vector<double>{v.stribeck_exponent, v.viscous_kip_s_per_in, v.added_viscous_kip_s_per_in,
-                                   v.rate_slope, v.reference_speed_in_per_s, v.memory_in};
+        return std::vector<double>{v.stribeck_exponent, v.added_viscous_kip_s_per_in, v.rate_slope,
+                                   v.reference_speed_in_per_s, v.memory_in};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension set by the actuators (Fs too; band force scales at once)",
@@ -241,20 +243,22 @@ std::vector<EffectSpec> build_library() {
           [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share}; })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut)",
-      "Fc, Fs x (1 + kappa_dir d + mu |d|), kappa_fwd for v >= 0, kappa_bwd for v < 0",
+      "Fc, Fs x (1 + kappa_dir d + mu |d|^p), kappa_fwd for v >= 0, kappa_bwd for v < 0",
       {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false},
        {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false},
-       {"drum_abs_per_in", -0.4, 0.4, 0.0, 0.1, false}},
+       {"drum_abs_per_in", -0.4, 0.4, 0.0, 0.1, false},
+       {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
         p.drum_fwd_per_in = t[0];
         p.drum_bwd_per_in = t[1];
         p.drum_abs_per_in = t[2];
+        p.abs_exponent = t[3];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
-        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in};
+        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape", "sharper stick-to-slip transition (Dahl exponent of the bristle law)",

@@ -40,7 +40,10 @@
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
 ///    capacity, a viscous force in parallel with the friction (lubricant film, heated lining), and
 ///    friction levels that follow the logarithm of the slip rate with a slip memory (the steady
-///    state of rate-and-state friction, Dieterich 1979 / Ruina 1983; s < 0 velocity weakening):
+///    state of rate-and-state friction, Dieterich 1979 / Ruina 1983; s < 0 velocity weakening).
+///    diagnose fits n, c_a, s, v_r, D; c_v is config-only (in steady sliding c_v and c_a are the same
+///    force, so fitting both lets their difference chase small transient residuals; measured: it was
+///    added after residual_static on the benchmark's low-noise cases):
 ///      g(v) = φ Fc + (φ Fs − φ Fc) exp(−|v/v_s|^n) + c_v |v|      (paper: n = 2, c_v = 0)
 ///      F += c_a v (gated by e(z) like σ2 v)
 ///      φ = max(0.2, 1 + s ln(ṽ / v_r)),  ṽ = D/θ,  dθ/dt = 1 − (|v| + v_f) θ / D  (aging law; D = 0:
@@ -51,10 +54,11 @@
 ///      dz/dt = v − |v| N_λ S(z)/g(v),  N_λ = 1 + λ (N − 1)
 ///    (λ: share of a tension change that scales the band force at once, as friction scales with
 ///    normal force, instead of through the LuGre transition; steady sliding is unchanged).
-///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ):
+///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
-///    Fc, Fs × (1 + κ_dir d + μ |d|), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
-///    either way, e.g. the band wrapping further round the drum).
+///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
+///    either way, e.g. the band wrapping further round the drum, or wear/heating of the lining;
+///    p shapes it: the capstan law e^(μθ) grows faster than linearly, p > 1).
 ///  - transition_shape (exponent = α): sharper stick-to-slip transition (Dahl's exponent). With
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation)
@@ -118,7 +122,8 @@ struct PretensionEffect {
 struct SelfEnergizingEffect {
   double drum_fwd_per_in = 0.0;  ///< κ_f: relative change of Fc, Fs per in of drum displacement, v >= 0
   double drum_bwd_per_in = 0.0;  ///< κ_b: same for v < 0
-  double drum_abs_per_in = 0.0;  ///< μ: relative change per in of |d|, both directions
+  double drum_abs_per_in = 0.0;  ///< μ: relative change with |d|^p, both directions (per in^p)
+  double abs_exponent = 1.0;     ///< p of |d|^p (> 0; 1: linear in the rotation)
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

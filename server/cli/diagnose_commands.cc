@@ -88,6 +88,10 @@ void add_diagnose_commands(CLI::App& app) {
   bench->add_flag("--hidden-shapes", b->o.hidden_shapes,
                   "also run the shapes of damper/synthetic (written blind by another author)");
   bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");
+  bench->add_option("--hidden-motion", b->o.hidden_motion,
+                    "drum motion of the damper/synthetic records: harmonic (the paper's tests 1 and 4) or earthquake "
+                    "(two broadband records per trial)")
+      ->check(CLI::IsMember({"harmonic", "earthquake"}));
   bench->add_flag("--verbose", b->o.verbose, "print each trial's diagnose report");
   bench->callback([b, cmd]() {
     damper::BenchOptions bo = b->o;

@@ -22,7 +22,9 @@ using test_support::run_process;
 using test_support::write_text;
 
 // Two records with hidden backlash, diagnosed from the model without it by the default path (bases
-// identified on the passive windows). The written model-updated.yaml reproduces the printed
+// identified on the passive windows), against its closest confusable (residual_static; the whole
+// library runs in the benchmark), with 150 evaluations per start (at the
+// default 60 the 4-parameter backlash fit improves 12 of the 14 held-out parts, confidence 0.62). The written model-updated.yaml reproduces the printed
 // "after" NRMSE of each record with `hybridsim damper predict` (the command named in the file).
 TEST(DiagnoseCli, NamesHiddenBacklashAndTheWrittenModelReproducesTheReport) {
   const std::string dir = fresh_temp_dir("diagnose_cli");
@@ -47,7 +49,8 @@ TEST(DiagnoseCli, NamesHiddenBacklashAndTheWrittenModelReproducesTheReport) {
     diagnose_test::write_json(t, files.back());
   }
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "--model", dir + "/model.yaml",
-                              "--measured", files[0], files[1], "--effect-evals", "150", "--out", dir + "/out"});
+                              "--measured", files[0], files[1], "--effects", "backlash", "residual_static",
+                              "--effect-evals", "150", "--out", dir + "/out"});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::regex last(
       "confidence: backlash=[0-9.]+ [^\n]*\neffects=backlash nrmse_before=[0-9.e-]+ nrmse_after=[0-9.e-]+ "
@@ -87,6 +90,34 @@ TEST(DiagnoseCli, BenchPrintsItsSummaryLine) {
   EXPECT_TRUE(std::regex_search(r.out, std::regex("trials=1 correct=1 wrong=0 false_positive=0\n$"))) << r.out;
 }
 
+// Issue 11 item 7 on the shipped result: configs/brfd-diagnosed-semiactive.yaml is diagnose's
+// model-updated.yaml for the six semi-active tests; the `damper predict` command it lists for a record
+// gives the NRMSE it states (the per-record "after" diagnose printed). Two records (CI time).
+TEST(DiagnoseCli, ShippedDiagnosedConfigReproducesItsStatedNrmse) {
+  if (!test_paths::have_shared()) GTEST_SKIP() << test_paths::shared_dir() << " is absent: real records not replayed";
+  const std::string config = test_paths::source_dir() + "/configs/brfd-diagnosed-semiactive.yaml";
+  const std::string yaml = read_text(config);
+  const std::regex line("damper predict --config model-updated\\.yaml --test ([^ \n]+)( --fit-window [0-9.:]+)? +# nrmse=([0-9.]+)");
+  int checked = 0;
+  for (auto it = std::sregex_iterator(yaml.begin(), yaml.end(), line); it != std::sregex_iterator() && checked < 2;
+       ++it, ++checked) {
+    const std::string record =
+        test_paths::shared_dir() + "/data/brfd/semiactive/" + std::filesystem::path((*it)[1].str()).filename().string();
+    std::vector<std::string> args{test_paths::bin_dir() + "/hybridsim", "damper", "predict", "--config", config,
+                                  "--test", record};
+    if ((*it)[2].matched) {
+      args.push_back("--fit-window");
+      args.push_back((*it)[2].str().substr(std::string(" --fit-window ").size()));
+    }
+    const auto p = run_process(args);
+    ASSERT_EQ(p.exit_code, 0) << p.err << p.out;
+    std::smatch q;
+    ASSERT_TRUE(std::regex_search(p.out, q, std::regex("(^|\\n)nrmse=([0-9.e-]+) rmse_kip=[^\\n]*\\n?$"))) << p.out;
+    EXPECT_NEAR(std::stod(q[2].str()), std::stod((*it)[3].str()), 1e-4) << record;  // 4 decimals in the file
+  }
+  EXPECT_EQ(checked, 2) << "the config lists no per-record predict commands:\n" << yaml;
+}
+
 TEST(DiagnoseCli, BadDataIsAUserError) {
   const std::string dir = fresh_temp_dir("diagnose_cli_bad");
   write_text(dir + "/model.yaml", damper::brfd_params_to_yaml(diagnose_test::synthetic_base()));
@@ -102,19 +133,29 @@ TEST(DiagnoseCli, BadDataIsAUserError) {
 
 namespace {
 
-// The shipped config with effects drives a hybrid run: hybridsim spawns brfd-substructure, whose
-// virtual damper steps the extended model (2 s of El Centro over LCM).
+// The shipped diagnosed config, with effects switched on, drives a hybrid run: hybridsim spawns
+// brfd-substructure, whose virtual damper steps the extended model (2 s of El Centro over LCM). The
+// diagnosed config itself holds no effect since the issue-11 method (docs/diagnose.md), so the
+// test appends an `effects:` block (backlash with re-tensioning and release, transition_shape, the
+// velocity effect with its slip memory) to exercise the extended model in the substructure.
 TEST(DiagnoseCli, ShippedDiagnosedConfigRunsInAHybridRun) {
   const std::string dir = fresh_temp_dir("diagnose_cli_run");
+  damper::BrfdParams model = damper::load_brfd_params(test_paths::source_dir() + "/configs/brfd-diagnosed-semiactive.yaml");
+  ASSERT_TRUE(model.effects.empty()) << "the diagnosed config now holds effects: test them as shipped";
+  model.effects.backlash = damper::BacklashEffect{0.04, 0.02, 1.0, 3.0};
+  model.effects.velocity = damper::VelocityEffect{2.0, 0.0, 0.0, -0.05, 1.0, 0.05};
+  model.effects.transition_shape = damper::TransitionShapeEffect{3.0};
+  write_text(dir + "/model.yaml", damper::brfd_params_to_yaml(model));
   server::RunConfig run = test_support::short_three_story(2.0, dir + "/results");
-  test_support::use_damper_config(run, "brfd-diagnosed-semiactive.yaml");
-  ASSERT_TRUE(run.damper_model.effects.backlash.has_value());  // the config holds effects
+  run.damper.model_config = dir + "/model.yaml";
+  run.damper_model = damper::load_brfd_params(run.damper.model_config);
   test_support::write_run_config(dir + "/run.yaml", run);
   const auto r = run_process({test_paths::bin_dir() + "/hybridsim", "run", "--config", dir + "/run.yaml"});
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  const std::string model = read_text(dir + "/results/damper-model.yaml");
-  EXPECT_NE(model.find("transition_shape:"), std::string::npos) << model;
-  EXPECT_NE(model.find("backlash:"), std::string::npos) << model;
+  const std::string used = read_text(dir + "/results/damper-model.yaml");
+  EXPECT_NE(used.find("transition_shape:"), std::string::npos) << used;
+  EXPECT_NE(used.find("release_ratio: 3"), std::string::npos) << used;
+  EXPECT_NE(used.find("memory_in: 0.05"), std::string::npos) << used;
   const std::smatch m = [&] {
     std::smatch x;
     std::regex_search(r.out, x, std::regex("damper 1: peak force ([0-9.]+) kip"));

@@ -8,7 +8,7 @@
 //  - the gap never grows when an effect is added, and every added effect beat the model without it
 //    (same refit) on held-out data;
 //  - the CI subset of `hybridsim diagnose bench` (library effects, shapes that are not library
-//    formulas, none): at most one miss, no false positive.
+//    formulas, none; 256 Hz, fits at 128 Hz): at most one miss, no false positive.
 #include "damper/diagnose/diagnose.h"
 #include "damper/diagnose/diagnose_bench.h"
 #include "damper/diagnose/diagnose_select.h"
@@ -124,7 +124,11 @@ TEST(DiagnoseSelection, GapNeverGrowsWhenAnEffectIsAdded) {
   truth.effects.residual_static->ratio = 0.5;
   truth.effects.residual_static->time_constant_s = 0.2;
   for (BaseSource base : {BaseSource::model, BaseSource::identify}) {
-    const DiagnoseResult r = run_diagnose(options_for(records_of(truth, 0.03, 9), base));
+    DiagnoseOptions o = options_for(records_of(truth, 0.03, 9), base);
+    // The confusable group of residual_static (CI time: the full library runs in the benchmark).
+    o.candidates = {"residual_static", "backlash", "transition_shape"};
+    o.max_effects = 1;
+    const DiagnoseResult r = run_diagnose(o);
     std::cout << diagnose_confidence_line(r) << "\n" << diagnose_final_line(r) << "\n";
     ASSERT_FALSE(r.added.empty());
     EXPECT_EQ(r.added.front(), "residual_static");
@@ -139,10 +143,11 @@ TEST(DiagnoseBench, CiSubsetIsCorrectWithoutFalsePositives) {
   bo.quick = true;
   bo.log = [](const std::string& s) { std::cout << s << "\n"; };
   const BenchResult r = run_diagnose_bench(bo);
-  EXPECT_EQ(r.trials.size(), 6u);
+  EXPECT_EQ(r.trials.size(), 5u);
   EXPECT_EQ(r.false_positive, 0);
-  // Known miss (docs/diagnose.md): the weight-law backlash (force cut to zero within 0.01 in of a
-  // reversal) is beyond the library's dead-zone spring from the exact base; at most that one.
+  // Library backlash and actuator lag, the weight-law backlash and friction growing with d² (not
+  // library formulas), none: the full matrix (docs/diagnose.md) gets these right in most trials;
+  // at most one miss here.
   EXPECT_GE(r.correct, static_cast<int>(r.trials.size()) - 1) << bench_final_line(r);
 }
 

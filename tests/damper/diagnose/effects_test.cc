@@ -37,15 +37,15 @@ std::vector<double> run(const BrfdParams& p, const SyntheticOptions& o, int subs
 
 ModelEffects all_effects() {
   ModelEffects e;
-  e.backlash = BacklashEffect{0.04, 0.03};
+  e.backlash = BacklashEffect{0.04, 0.03, 1.0, 3.0};
   e.residual_static = ResidualStaticEffect{};
   e.residual_static->ratio = 0.5;
   e.residual_static->time_constant_s = 0.2;
   e.actuator_lag = ActuatorLagEffect{0.1, 0.2, 0.6};
   e.asymmetry = AsymmetryEffect{0.1, 0.3};
-  e.velocity = VelocityEffect{1.5, 0.2};
+  e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05};
   e.pretension = PretensionEffect{0.8, 0.7};
-  e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12};
+  e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5};
   e.transition_shape = TransitionShapeEffect{3.0};
   return e;
 }
@@ -93,6 +93,8 @@ TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
   p.effects.residual_static.reset();
   p.effects.transition_shape.reset();  // RK4 sub-steps: checked against RK4 below
   p.effects.backlash->retension_in = 0.0;  // idem (the soft re-tensioning spring is nonlinear)
+  p.effects.backlash->release_ratio = 1.0;  // idem (RK4 sub-steps)
+  p.effects.velocity->memory_in = 0.0;      // a filtered state, held at its end-of-step value like the lag
   SyntheticOptions o;
   o.rate_hz = 256.0;
   const std::vector<double> one = run(p, o, 1);
@@ -160,6 +162,96 @@ TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
   EXPECT_NEAR(m.step(in, dt), -p.lugre.fc_bwd_kip, 1e-6);
 }
 
+// The taut band releases r times faster than the lining loads: with σ1 = σ2 = 0 and Fs = Fc (g = Fc),
+// S = σ0 (z − δ) obeys dS/ds = −r σ0 (1 + S/g) after a reversal, so the force falls from g to g/10
+// over a drum travel (g / (r σ0)) ln(2 / 1.1).
+TEST(Effects, BacklashReleaseRatioShortensTheUnloadingTravel) {
+  for (double r : {1.0, 5.0}) {
+    BrfdParams p = synthetic_base();
+    p.kind = DamperKind::passive_lugre;
+    p.lugre.sigma1_kip_s_per_in = 0.0;
+    p.lugre.sigma2_kip_s_per_in = 0.0;
+    p.lugre.fc_bwd_kip = p.lugre.fc_fwd_kip;  // the same g both ways
+    p.lugre.fs_fwd_kip = p.lugre.fs_bwd_kip = p.lugre.fc_fwd_kip;
+    p.effects.backlash = BacklashEffect{0.05, 0.0, 1.0, r};
+    BrfdModel m(p);
+    const double dt = 1e-5, v = 1.0, g = p.lugre.fc_fwd_kip;
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    for (int i = 0; i < 200000; ++i) m.step(in, dt);  // 2 in forward: steady, S = g
+    in.drum_vel_in_per_s = -v;
+    double travel = 0.0;
+    while (m.step(in, dt) > 0.1 * g) travel += v * dt;
+    EXPECT_NEAR(travel, g / (r * p.lugre.sigma0_kip_per_in) * std::log(2.0 / 1.1), 2e-3 * travel + 2.0 * v * dt) << r;
+  }
+}
+
+// While the band is slack the lining does not slide: no damping or viscous force either, the force
+// is exactly zero over the slack (σ1, σ2 > 0 here), and with ε > 0 they come back with the band.
+TEST(Effects, SlackBandCarriesNoDampingOrViscousForce) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.05;
+  p.lugre.sigma2_kip_s_per_in = 0.3;
+  p.effects.backlash = BacklashEffect{0.06, 0.02, 1.0, 1.0};
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = 2.0;
+  for (int i = 0; i < 20000; ++i) m.step(in, 1e-4);
+  in.drum_vel_in_per_s = -2.0;
+  int inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double f = m.step(in, 1e-4);
+    if (std::abs(m.bristle_in()) < 0.06) {
+      EXPECT_EQ(f, 0.0) << m.bristle_in();
+      ++inside;
+    }
+  }
+  EXPECT_GT(inside, 500);  // 2δ = 0.12 in at 2 in/s: 600 steps
+  EXPECT_NEAR(m.step(in, 1e-4), -m.stribeck_kip(in) + p.lugre.sigma2_kip_s_per_in * in.drum_vel_in_per_s, 1e-6);
+}
+
+// The velocity effect in steady sliding (stiff band, so the bristle follows at once):
+// F = φ g(v) + (σ2 + c_a) v with φ = 1 + s ln((|v| + 0.01)/v_r) (no memory); with a slip memory D the
+// level after a speed step follows the aging law: θ(s) = θ₂ + (θ₁ − θ₂) e^(−s/D), ṽ = D/θ.
+TEST(Effects, VelocityEffectGivesParallelViscousAndLogRateLevels) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const double ca = 0.15, s = -0.06, vr = 1.5;
+  p.effects.velocity = VelocityEffect{2.0, 0.0, ca, s, vr, 0.0};
+  for (double v : {0.3, 1.0, 4.0}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+    const double phi = 1.0 + s * std::log((v + 0.01) / vr);
+    const double r = v / p.lugre.vs_in_per_s;
+    const double g = phi * (p.lugre.fc_fwd_kip + (p.lugre.fs_fwd_kip - p.lugre.fc_fwd_kip) * std::exp(-r * r));
+    EXPECT_NEAR(f, g + (p.lugre.sigma2_kip_s_per_in + ca) * v, 1e-6 * g) << v;
+  }
+  const double d = 0.1, v1 = 0.5, v2 = 3.0;
+  p.effects.velocity = VelocityEffect{2.0, 0.0, 0.0, s, vr, d};
+  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;  // g = φ Fc
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v1;
+  for (int i = 0; i < 40000; ++i) m.step(in, 1e-4);  // 2 in at v1: θ = D/(v1 + 0.01)
+  in.drum_vel_in_per_s = v2;
+  const double th1 = d / (v1 + 0.01), th2 = d / (v2 + 0.01);
+  double slip = 0.0, worst = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    const double f = m.step(in, 1e-4);
+    slip += v2 * 1e-4;
+    const double th = th2 + (th1 - th2) * std::exp(-slip * (v2 + 0.01) / v2 / d);
+    const double expected = (1.0 + s * std::log(d / th / vr)) * p.lugre.fc_fwd_kip + p.lugre.sigma2_kip_s_per_in * v2;
+    if (slip > 0.01) worst = std::max(worst, std::abs(f - expected));  // after the bristle's own transient
+  }
+  EXPECT_LT(worst, 2e-3 * p.lugre.fc_fwd_kip);
+}
+
 TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
   // h(u) = u²/(2ε) below ε, u − ε/2 beyond: continuous with continuous slope; bristle_for_force
   // inverts it; the stiffness dS/dz grows linearly from 0 at the end of the slack to σ0 at ε.
@@ -218,13 +310,15 @@ TEST(Effects, SecondOrderActuatorFollowsTheClosedFormStepResponse) {
 TEST(Effects, SelfEnergizingGrowsWithTheRotationEitherWay) {
   BrfdParams p = synthetic_base();
   p.kind = DamperKind::passive_lugre;
-  p.effects.self_energizing = SelfEnergizingEffect{0.0, 0.0, 0.2};
-  const BrfdModel m(p);
-  for (double d : {-0.5, 0.0, 0.5, 1.0}) {
-    DamperInput in;
-    in.drum_disp_in = d;
-    in.drum_vel_in_per_s = 1.0;
-    EXPECT_NEAR(m.kinetic_friction_kip(in), p.lugre.fc_fwd_kip * (1.0 + 0.2 * std::abs(d)), 1e-12) << d;
+  for (double power : {1.0, 2.0}) {
+    p.effects.self_energizing = SelfEnergizingEffect{0.0, 0.0, 0.2, power};
+    const BrfdModel m(p);
+    for (double d : {-0.5, 0.0, 0.5, 1.0, 1.5}) {
+      DamperInput in;
+      in.drum_disp_in = d;
+      in.drum_vel_in_per_s = 1.0;
+      EXPECT_NEAR(m.kinetic_friction_kip(in), p.lugre.fc_fwd_kip * (1.0 + 0.2 * std::pow(std::abs(d), power)), 1e-12) << d;
+    }
   }
 }
 
