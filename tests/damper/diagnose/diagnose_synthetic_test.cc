@@ -8,7 +8,7 @@
 //  - the gap never grows when an effect is added, and every added effect beat the model without it
 //    (same refit) on held-out data;
 //  - the CI subset of `hybridsim diagnose bench` (library effects, shapes that are not library
-//    formulas, none; 256 Hz, fits at 128 Hz): at most one miss, no false positive.
+//    formulas, none): at most one miss, no false positive.
 #include "damper/diagnose/diagnose.h"
 #include "damper/diagnose/diagnose_bench.h"
 #include "damper/diagnose/diagnose_select.h"
