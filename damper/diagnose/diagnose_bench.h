@@ -47,6 +47,7 @@ struct BenchOptions {
   std::function<void(const std::string&)> log;
   bool verbose = false;            ///< also log each diagnose report
   int effect_evals = 60;           ///< diagnose's LN_BOBYQA evaluations per start of an effect fit
+  double fit_rate_hz = 0.0;        ///< diagnose's fit rate (0: its default, 256 Hz)
   /// Extra cases, appended to the matrix.
   std::vector<BenchCase> extra;
   /// Also run the shapes of damper/synthetic (written blind by another author; see

@@ -55,6 +55,11 @@ void add_diagnose_commands(CLI::App& app) {
   cmd->add_option("--resamples", o.resamples, "bootstrap resamples per round")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--effect-evals", o.effect_evals, "LN_BOBYQA evaluations per start of an effect fit")
       ->check(CLI::Range(5, 100000))->capture_default_str();
+  cmd->add_option("--fit-rate", o.fit_rate_hz,
+                  "effect fits and scores on records decimated to at least this rate, Hz (the record's own rate "
+                  "if lower; before/after always at the full rate)")
+      ->check(CLI::Range(16.0, 100000.0))
+      ->capture_default_str();
   cmd->add_option("--fit-iterations", o.fit_iterations, "alternations effect step / base step per fit")
       ->check(CLI::Range(1, 10))->capture_default_str();
   cmd->add_option("--base-global-evals", o.base_identification.global_max_evals,
@@ -88,6 +93,8 @@ void add_diagnose_commands(CLI::App& app) {
   bench->add_flag("--hidden-shapes", b->o.hidden_shapes,
                   "also run the shapes of damper/synthetic (written blind by another author)");
   bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");
+  bench->add_option("--fit-rate", b->o.fit_rate_hz, "diagnose's fit rate, Hz (default: diagnose's 256)")
+      ->check(CLI::Range(16.0, 100000.0));
   bench->add_option("--hidden-motion", b->o.hidden_motion,
                     "drum motion of the damper/synthetic records: harmonic (the paper's tests 1 and 4) or earthquake "
                     "(two broadband records per trial)")
