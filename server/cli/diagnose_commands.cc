@@ -93,8 +93,10 @@ void add_diagnose_commands(CLI::App& app) {
   bench->add_flag("--hidden-shapes", b->o.hidden_shapes,
                   "also run the shapes of damper/synthetic (written blind by another author)");
   bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");
-  bench->add_option("--fit-rate", b->o.fit_rate_hz, "diagnose's fit rate, Hz (default: diagnose's 256)")
-      ->check(CLI::Range(16.0, 100000.0));
+  bench->add_option("--fit-rate", b->o.fit_rate_hz,
+                    "diagnose's fit rate, Hz (512: the own records' rate, no decimation; diagnose's own default is 256)")
+      ->check(CLI::Range(16.0, 100000.0))
+      ->capture_default_str();
   bench->add_option("--hidden-motion", b->o.hidden_motion,
                     "drum motion of the damper/synthetic records: harmonic (the paper's tests 1 and 4) or earthquake "
                     "(two broadband records per trial)")
