@@ -335,7 +335,21 @@ void PhysicalNode::process_command(TimePoint now) {
     trip(why_, now);
     return;
   }
-  current_compensated_ = ats_.compensate(current_target_);
+  // ATS adds a correction (a0-1) x + a1 v + a2 a to the target, with v and a from the targets'
+  // differences. a includes the fed-back force: when this loop or the rig is descheduled for a
+  // few ms, the rig holds a command that leads the target by ~25 ms, the drum stops, the
+  // friction force falls by about a kip in one step, and a2 * (jump of a) moved the command by
+  // 0.015-0.025 in in one period: 15-25 in/s, a safety trip on a motion of 7 in/s (seen 2 in 20
+  // flake-check runs, load 3-11). The correction may change by at most half the drum rate limit
+  // per period; the target itself is never shaped, so a bad drift command still trips.
+  {
+    const double raw_correction = ats_.compensate(current_target_) - current_target_;
+    const double max_change = 0.5 * s_.limits.velocity_in_per_s * period_;
+    const double change = std::clamp(raw_correction - ats_correction_in_, -max_change, max_change);
+    if (change != raw_correction - ats_correction_in_) ++ats_correction_limited_steps_;
+    ats_correction_in_ += change;
+    current_compensated_ = current_target_ + ats_correction_in_;
+  }
   const double r = ramp_factor(static_cast<double>(steps_done_) * period_, s_.ramp.ramp_in_s);
   ActuatorSetpoint sp = start_;
   sp.drum_in = start_.drum_in + r * (current_compensated_ - start_.drum_in);
@@ -499,7 +513,8 @@ int PhysicalNode::finish() {
                         {"nrms_error_pct", "RMS(measured - target) / max|target| * 100"},
                         {"peak_error_in", "max |measured - target|"}};
     j["ats"] = {{"enabled", s_.ats.enabled}, {"a0", a[0]}, {"a1_s", a[1]}, {"a2_s2", a[2]},
-                {"equivalent_delay_ms", equivalent_delay_ms}, {"updates", ats_.updates()}};
+                {"equivalent_delay_ms", equivalent_delay_ms}, {"updates", ats_.updates()},
+                {"correction_rate_limited_steps", ats_correction_limited_steps_}};
     j["late_frames"] = late_frames_;
     j["max_sensor_frame_gap_ms"] = 1e3 * act_.max_frame_gap_s();
     j["rig_rejected_commands"] = rejected_seen_;

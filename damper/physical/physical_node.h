@@ -130,6 +130,10 @@ class PhysicalNode : public messages::LoopActor, private messages::SubstructureE
   int64_t current_step_ = -1;
   double current_sim_time_ = 0, current_target_ = 0, current_compensated_ = 0, current_command_ = 0;
   double current_intended_ = 0;
+  /// ATS correction (compensated - target) of the last command, in, and how many steps had
+  /// its change limited (PhysicalNode::process_command).
+  double ats_correction_in_ = 0;
+  long ats_correction_limited_steps_ = 0;
   long frames_at_publish_ = 0, frames_checked_ = 0;
   long steps_done_ = 0, late_frames_ = 0;
   int32_t rejected_seen_ = 0;
