@@ -138,12 +138,16 @@ std::vector<std::vector<double>> localize_before(const std::vector<DiagnoseRecor
   return pred;
 }
 
-// The records decimated to about o.fit_rate_hz (every k-th sample, k >= 1), as the fits see them.
+// The records decimated to about o.fit_rate_hz (every k-th sample, k >= 1; k = 1 for fit_rate_hz 0,
+// the records' own rate), as the fits see them.
 std::vector<DiagnoseRecord> decimated_for_fits(const std::vector<DiagnoseRecord>& recs, const DiagnoseOptions& o) {
   std::vector<DiagnoseRecord> frecs;
   for (const DiagnoseRecord& r : recs) {
-    const std::size_t k = std::max<std::size_t>(
-        1, static_cast<std::size_t>(std::floor(1.0 / (r.test.dt_s * std::max(1.0, o.fit_rate_hz)) + 1e-9)));
+    const std::size_t k =
+        o.fit_rate_hz <= 0.0
+            ? 1
+            : std::max<std::size_t>(
+                  1, static_cast<std::size_t>(std::floor(1.0 / (r.test.dt_s * std::max(1.0, o.fit_rate_hz)) + 1e-9)));
     frecs.push_back(decimate(r, k));
   }
   return frecs;

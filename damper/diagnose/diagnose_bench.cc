@@ -417,7 +417,7 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
         o.max_effects = 3;
         o.seed = seed;
         o.effect_evals = bo.effect_evals;
-        if (bo.fit_rate_hz > 0.0) o.fit_rate_hz = bo.fit_rate_hz;
+        o.fit_rate_hz = bo.fit_rate_hz;
         if (bo.verbose) o.log = bo.log;
         if (c.identify) {
           o.base_identification.global_runs = 1;

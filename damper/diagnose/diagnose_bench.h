@@ -47,10 +47,10 @@ struct BenchOptions {
   std::function<void(const std::string&)> log;
   bool verbose = false;            ///< also log each diagnose report
   int effect_evals = 60;           ///< diagnose's LN_BOBYQA evaluations per start of an effect fit
-  /// diagnose's fit rate, Hz: 512 = the own generator's record rate (no decimation; 0: diagnose's
-  /// default 256 Hz, which leaves a discretization residual that a second effect then explained in
-  /// 26 of 156 trials at noise 0.02, docs/diagnose.md).
-  double fit_rate_hz = 512.0;
+  /// diagnose's fit rate, Hz: 0 = diagnose's default, the records' own rate (no decimation; a
+  /// 256 Hz fit rate leaves a discretization residual that a second effect then explained in 26 of
+  /// 156 trials at noise 0.02, docs/diagnose.md).
+  double fit_rate_hz = 0.0;
   /// Extra cases, appended to the matrix.
   std::vector<BenchCase> extra;
   /// Also run the shapes of damper/synthetic (written blind by another author; see

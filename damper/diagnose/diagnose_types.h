@@ -43,8 +43,10 @@ struct DiagnoseOptions {
   int effect_evals = 60;                 ///< LN_BOBYQA evaluations per start of an effect fit
   int fit_iterations = 2;                ///< alternations effect step / base step per fit
   /// Effect fits and scores run on records decimated to at least this rate (every k-th sample),
-  /// Hz; the before/after numbers use the full rate.
-  double fit_rate_hz = 256.0;
+  /// Hz; 0 (the default): the records' own rate, nothing decimated. Decimating leaves a structured
+  /// discretization residual that flexible families fit (docs/diagnose.md, "Fits at the record
+  /// rate"); the before/after numbers always use the full rate.
+  double fit_rate_hz = 0.0;
   /// A candidate must remove at least this share of the held-out mean square residual of the
   /// refitted model without it ...
   double min_improvement = 0.05;

@@ -11,6 +11,23 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+
+namespace {
+
+// --fit-rate: 0 (the records' own rate) or a rate in [16, 100000] Hz.
+std::string fit_rate_check(const std::string& text) {
+  double hz = -1.0;
+  try {
+    hz = std::stod(text);
+  } catch (const std::exception&) {
+    return "--fit-rate: '" + text + "' is not a number";
+  }
+  if (hz == 0.0 || (hz >= 16.0 && hz <= 100000.0)) return "";
+  return "--fit-rate: " + text + " Hz must be 0 (the records' own rate) or in [16, 100000]";
+}
+
+}  // namespace
 
 void add_diagnose_commands(CLI::App& app) {
   struct Args {
@@ -56,9 +73,9 @@ void add_diagnose_commands(CLI::App& app) {
   cmd->add_option("--effect-evals", o.effect_evals, "LN_BOBYQA evaluations per start of an effect fit")
       ->check(CLI::Range(5, 100000))->capture_default_str();
   cmd->add_option("--fit-rate", o.fit_rate_hz,
-                  "effect fits and scores on records decimated to at least this rate, Hz (the record's own rate "
-                  "if lower; before/after always at the full rate)")
-      ->check(CLI::Range(16.0, 100000.0))
+                  "effect fits and scores on records decimated to at least this rate, Hz (0: the records' own "
+                  "rate, nothing decimated; the record's own rate if lower; before/after always at the full rate)")
+      ->check(fit_rate_check)
       ->capture_default_str();
   cmd->add_option("--fit-iterations", o.fit_iterations, "alternations effect step / base step per fit")
       ->check(CLI::Range(1, 10))->capture_default_str();
@@ -94,8 +111,8 @@ void add_diagnose_commands(CLI::App& app) {
                   "also run the shapes of damper/synthetic (written blind by another author)");
   bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");
   bench->add_option("--fit-rate", b->o.fit_rate_hz,
-                    "diagnose's fit rate, Hz (512: the own records' rate, no decimation; diagnose's own default is 256)")
-      ->check(CLI::Range(16.0, 100000.0))
+                    "diagnose's fit rate, Hz (0: the records' own rate, no decimation, as diagnose's default)")
+      ->check(fit_rate_check)
       ->capture_default_str();
   bench->add_option("--hidden-motion", b->o.hidden_motion,
                     "drum motion of the damper/synthetic records: harmonic (the paper's tests 1 and 4) or earthquake "

@@ -127,6 +127,12 @@ TEST(DiagnoseCli, BadDataIsAUserError) {
   EXPECT_EQ(r.exit_code, 2);  // bad input (README "Exit codes")
   EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
+
+  // A fit rate that is neither 0 (the records' own rate) nor in [16, 100000] Hz is named.
+  const auto rate = run_process({test_paths::bin_dir() + "/hybridsim", "diagnose", "--model", dir + "/model.yaml",
+                                 "--measured", dir + "/broken.json", "--out", dir + "/out", "--fit-rate", "5"});
+  EXPECT_NE(rate.exit_code, 0);
+  EXPECT_NE(rate.err.find("--fit-rate: 5 Hz must be 0"), std::string::npos) << rate.err;
 }
 
 }  // namespace
