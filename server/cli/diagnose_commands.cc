@@ -21,10 +21,10 @@ std::string fit_rate_check(const std::string& text) {
   try {
     hz = std::stod(text);
   } catch (const std::exception&) {
-    return "--fit-rate: '" + text + "' is not a number";
+    return "'" + text + "' is not a number";
   }
   if (hz == 0.0 || (hz >= 16.0 && hz <= 100000.0)) return "";
-  return "--fit-rate: " + text + " Hz must be 0 (the records' own rate) or in [16, 100000]";
+  return text + " Hz must be 0 (the records' own rate) or in [16, 100000]";
 }
 
 }  // namespace
