@@ -132,7 +132,9 @@ TEST(KrAlphaIntegrator, SdofSpectralPropertiesMatchClosedForm) {
                   rho, big_omega, me.period_elongation, cf.period_elongation, me.damping_ratio, cf.damping_ratio);
       EXPECT_NEAR(me.period_elongation, cf.period_elongation, std::max(0.01 * std::abs(cf.period_elongation), 1e-6));
       EXPECT_NEAR(me.damping_ratio, cf.damping_ratio, std::max(0.01 * std::abs(cf.damping_ratio), 1e-6));
-      if (rho < 1) EXPECT_GT(me.damping_ratio, 1e-5) << "rho_inf < 1 must dissipate";
+      if (rho < 1) {
+        EXPECT_GT(me.damping_ratio, 1e-5) << "rho_inf < 1 must dissipate";
+      }
     }
   }
 }

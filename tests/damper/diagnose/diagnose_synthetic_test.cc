@@ -65,7 +65,9 @@ DiagnoseOptions options_for(const std::vector<BrfdTest>& recs, BaseSource base) 
 void check_gap_never_grows(const DiagnoseResult& r) {
   EXPECT_LE(r.nrmse_after_mean, r.nrmse_before_mean + 1e-12) << diagnose_final_line(r);
   for (const CandidateScore& c : r.candidates)
-    if (c.accepted) EXPECT_LT(c.heldout_rmse_kip, c.heldout_rmse_null_kip) << c.effect;
+    if (c.accepted) {
+      EXPECT_LT(c.heldout_rmse_kip, c.heldout_rmse_null_kip) << c.effect;
+    }
 }
 
 TEST(DiagnoseSelection, CandidatePinnedAtItsNullValueNeverWins) {
