@@ -111,7 +111,8 @@ struct GateResult {
 };
 
 GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const std::vector<std::size_t>& part_record,
-                 std::size_t records, double sigma2, const DiagnoseOptions& o, bool check_signature) {
+                 std::size_t records, double sigma2, const DiagnoseOptions& o, bool check_signature,
+                 bool check_consistency = true) {
   GateResult g;
   double null_sse = 0.0, n = 0.0;
   std::vector<double> rec_gain(records, 0.0), rec_null(records, 0.0);
@@ -145,7 +146,8 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
             format_significant(100.0 * o.min_excess_share, 2) + "%)";
     return g;
   }
-  if (g.changed == 0 || static_cast<double>(g.improved) < o.consistency * static_cast<double>(g.changed)) {
+  if (check_consistency &&
+      (g.changed == 0 || static_cast<double>(g.improved) < o.consistency * static_cast<double>(g.changed))) {
     g.why = "improves " + std::to_string(g.improved) + " of the " + std::to_string(g.changed) + " held-out parts it changes";
     return g;
   }
@@ -295,13 +297,17 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     out.scores.push_back(s);
   }
 
-  // Winner and bootstrap confidence over the held-out parts.
+  // Winner and bootstrap confidence over the held-out parts. The consistency gate (2) is applied
+  // once, to all held-out parts (out.scores[c].passes); inside a resample it is not re-applied:
+  // there it would measure how far a candidate's share of improved parts sits above the 80 %
+  // threshold, not how stable the choice is (a backlash improving 10 of 12 parts, 87 % of the
+  // held-out mean square, was chosen in 68 % of resamples; bench 144 -> 149 of 156, docs/diagnose.md).
   auto winner_of = [&](const std::vector<int>& w, bool full) {
     int best = -1;
     double best_gain = 0.0;
     for (std::size_t c = 0; c < out.scores.size(); ++c) {
       const GateResult g = full ? GateResult{out.scores[c].passes, 0, 0, 0, 0, 0, ""}
-                                : gates(out.scores[c], w, part_record, recs.size(), sigma2, o, true);
+                                : gates(out.scores[c], w, part_record, recs.size(), sigma2, o, true, /*check_consistency=*/false);
       if (!g.passes) continue;
       double gain = 0.0;
       for (std::size_t p = 0; p < w.size(); ++p) gain += w[p] * out.scores[c].part_gain_kip2[p];

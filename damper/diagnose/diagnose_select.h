@@ -19,7 +19,9 @@
 ///   (3) >= signature_share of its held-out low-frequency gain sits in its own regimes
 ///       (EffectSpec::regimes);
 /// the winner is the passing candidate with the largest Σg. Its confidence is the share of
-/// bootstrap resamples of the parts (with replacement) in which it is still the passing winner;
+/// bootstrap resamples of the parts (with replacement) in which it is still the winner among the
+/// candidates passing (1), the per-record part of (2) and (3) on the resample (the consistency
+/// share of (2) is a requirement on all held-out parts, applied once, not re-drawn);
 /// it is added only with confidence >= options.confidence. Confusable effects (EffectSpec::
 /// confusable) that also pass are compared part by part and reported as told apart or not.
 /// Before any candidate, the residual of the refitted model is tested against the noise floor;
