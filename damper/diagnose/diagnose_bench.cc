@@ -125,6 +125,35 @@ BenchCase own_friction_d2(const std::string& strength, double a) {
   return c;
 }
 
+// Lining wear slackening the band: friction levels b, Fs / (1 + a W) (hyperbolic, not the
+// library's linear 1 - w W), W the friction work done so far, integral of |F v| dt (kip in).
+BenchCase own_lining_wear(const std::string& strength, double a) {
+  BenchCase c;
+  c.name = "own:lining_wear/" + strength;
+  c.family = "pretension";
+  c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
+    const BrfdParams p0 = with_initial(base, t);
+    std::vector<double> f(t.size());
+    double z = 0.0, work = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      BrfdParams p = p0;
+      const double k = 1.0 / (1.0 + a * work);
+      p.lugre.fc_fwd_kip *= k;
+      p.lugre.fc_bwd_kip *= k;
+      p.lugre.fs_fwd_kip *= k;
+      p.lugre.fs_bwd_kip *= k;
+      BrfdModel m(p);
+      m.set_bristle_in(z);
+      const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+      f[i] = i == 0 ? m.force_kip(z, in) : m.step(in, t.dt_s);
+      z = m.bristle_in();
+      work += std::abs(f[i] * t.drum_vel_in_per_s[i]) * t.dt_s;
+    }
+    return f;
+  };
+  return c;
+}
+
 // The held force relaxes hyperbolically after the drum stops: F (1 - rho s/(s + tau)).
 BenchCase own_rest_creep(const std::string& strength, double rho, double tau_s) {
   BenchCase c;
@@ -263,8 +292,8 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("asymmetry", "strong", {0.15, 0.3}));
   c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0}));
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05}));
-  c.push_back(library_case("pretension", "weak", {0.5, 0.5}));
-  c.push_back(library_case("pretension", "strong", {1.0, 0.8}));
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0}));
   c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0}));
   c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0}));
   c.push_back(library_case("transition_shape", "weak", {2.5}));
@@ -275,6 +304,8 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(own_delay("strong", 0.1));
   c.push_back(own_friction_d2("weak", 0.15));
   c.push_back(own_friction_d2("strong", 0.3));
+  c.push_back(own_lining_wear("weak", 0.001));
+  c.push_back(own_lining_wear("strong", 0.003));
   c.push_back(own_rest_creep("weak", 0.3, 0.3));
   c.push_back(own_rest_creep("strong", 0.6, 0.2));
   c.push_back(none_case(false));

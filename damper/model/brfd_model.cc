@@ -33,6 +33,7 @@ void BrfdModel::reset() {
   slow_speed_ = kInitialSlowSpeed;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
+  friction_work_kip_in_ = 0.0;
 }
 
 double BrfdModel::rate_factor(double speed) const {
@@ -111,6 +112,8 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     // Fs follows a share of the Eq. (4) tension change; a share of it scales the band force at once.
     fs *= std::max(0.05, 1.0 + e.pretension->fs_share * dfc / b);
     tension = std::max(0.05, 1.0 + e.pretension->instant_share * dfc / b);
+    if (e.pretension->wear_per_kip_in != 0.0)
+      factor *= std::max(0.05, 1.0 - e.pretension->wear_per_kip_in * friction_work_kip_in_);
   }
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
@@ -253,6 +256,14 @@ double BrfdModel::step(const DamperInput& in, double dt_s) {
 }
 
 double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
+  const double force = step_states_with_effects(in, dt_s);
+  // Friction work of the step (pretension's wear), with the force at its end.
+  if (params_.effects.pretension && params_.effects.pretension->wear_per_kip_in != 0.0)
+    friction_work_kip_in_ += std::abs(force * in.drum_vel_in_per_s) * dt_s;
+  return force;
+}
+
+double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const ModelEffects& e = params_.effects;
   if (e.actuator_lag) {
     const double tau = e.actuator_lag->time_constant_s;

@@ -71,10 +71,11 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
-    p.allow_only({"fs_share", "instant_share"});
+    p.allow_only({"fs_share", "instant_share", "wear_per_kip_in"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
+    x.wear_per_kip_in = p.get_double_in("wear_per_kip_in", 0.0, -1.0, 1.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -229,18 +230,22 @@ std::vector<EffectSpec> build_library() {
                                    v.reference_speed_in_per_s, v.memory_in};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
-      "pretension", "friction follows the band pre-tension set by the actuators (Fs too; band force scales at once)",
-      "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1)",
-      {{"fs_share", -1.0, 3.0, 0.0, 1.0, false}, {"instant_share", 0.0, 1.0, 0.0, 0.5, false}},
+      "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
+      "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
+      "Fc, Fs x (1 - wear W), dW/dt = |F v|",
+      {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
+       {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
+       {"wear_per_kip_in", -0.003, 0.003, 0.0, 0.0005, false}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
         p.fs_share = t[0];
         p.instant_share = t[1];
+        p.wear_per_kip_in = t[2];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>(
-          [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share}; })));
+          [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in}; })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p), kappa_fwd for v >= 0, kappa_bwd for v < 0",
@@ -281,7 +286,7 @@ std::vector<EffectSpec> build_library() {
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});
-  sig("pretension", {"actuators"}, {"self_energizing", "asymmetry", "actuator_lag"});
+  sig("pretension", {"actuators", "sliding"}, {"self_energizing", "asymmetry", "actuator_lag"});
   sig("self_energizing", {"sliding", "actuators"}, {"pretension", "asymmetry"});
   sig("transition_shape", {"reversal", "sticking"}, {"backlash", "residual_static", "velocity"});
   return lib;

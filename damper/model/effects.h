@@ -48,12 +48,18 @@
 ///      F += c_a v (gated by e(z) like σ2 v)
 ///      φ = max(0.2, 1 + s ln(ṽ / v_r)),  ṽ = D/θ,  dθ/dt = 1 − (|v| + v_f) θ / D  (aging law; D = 0:
 ///      ṽ = |v| + v_f), v_f = 0.01 in/s; θ(0) = D/v_r (φ = 1 at the start).
-///  - pretension (fs_share = β, instant_share = λ): friction follows the band pre-tension set by
-///    the actuators. With N = (b + ΔFc)/b the tension ratio of Eq. (4):
+///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
+///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
+///    tension ratio of Eq. (4):
 ///      Fs = Fs0 (1 + β ΔFc / b);  band force F = N_λ S(z) + σ1 dz/dt + σ2 v,
 ///      dz/dt = v − |v| N_λ S(z)/g(v),  N_λ = 1 + λ (N − 1)
 ///    (λ: share of a tension change that scales the band force at once, as friction scales with
 ///    normal force, instead of through the LuGre transition; steady sliding is unchanged).
+///    Wear: the actuators hold their positions while the lining thins, so the band's pre-tension,
+///    and every friction level with it, falls with the wear depth, which is proportional to the
+///    friction work done (Archard 1953):  Fc, Fs × max(0.05, 1 − w W),  dW/dt = |F v|  (kip·in,
+///    W(0) = 0; w < 0: bedding-in, friction rising). In steady sliding at speed v and friction
+///    F = Fc (1 − w W) this gives F(t) = Fc exp(−w Fc v t).
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
@@ -117,6 +123,7 @@ struct VelocityEffect {
 struct PretensionEffect {
   double fs_share = 0.0;       ///< β: share of the Eq. (4) tension change that Fs follows
   double instant_share = 0.0;  ///< λ: share of the tension change scaling the band force at once, 0..1
+  double wear_per_kip_in = 0.0;  ///< w: relative pre-tension lost per kip·in of friction work (< 0: gained)
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

@@ -322,6 +322,36 @@ TEST(Effects, SelfEnergizingGrowsWithTheRotationEitherWay) {
   }
 }
 
+// Pretension's wear in steady sliding: dW/dt = F v and F = G (1 - w W) give the closed form
+// F(t) = G exp(-w G v t) (G the friction without wear; no viscous term, v >> v_s).
+TEST(Effects, WearLowersTheFrictionAsTheClosedFormOfArchardsLaw) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double w = 0.002, v = 10.0 * p.lugre.vs_in_per_s, dt = 1e-4;
+  p.effects.pretension = PretensionEffect{0.0, 0.0, w};
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  BrfdParams no_wear = p;
+  no_wear.effects = ModelEffects{};
+  const double g = BrfdModel(no_wear).stribeck_kip(in);
+  double f = 0.0;
+  int checked = 0;
+  for (int i = 1; i <= 200000; ++i) {
+    in.drum_disp_in += v * dt;
+    f = m.step(in, dt);
+    if (i % 50000 == 0) {
+      const double t = i * dt, expected = g * std::exp(-w * g * v * t);
+      EXPECT_NEAR(f, expected, 2e-3 * g) << "t " << t << " s";
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 4);
+  EXPECT_LT(f, 0.7 * g);  // the wear is visible: 20 s at 13 in/s
+}
+
 TEST(Effects, SteadySlidingIsUnchangedByBacklashAndPretension) {
   BrfdParams p = synthetic_base();
   p.effects.backlash = BacklashEffect{0.05};
