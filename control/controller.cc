@@ -33,7 +33,7 @@ Law law_from_string(const std::string& name) {
 }
 
 ControlConfig control_config_from_yaml(const common::YamlSection& s) {
-  s.allow_only({"law", "min_kinetic_friction_kip", "sensors", "clipped_optimal", "modulated_homogeneous"});
+  s.allow_only({"law", "min_kinetic_friction_kip", "sensors", "lyapunov", "clipped_optimal", "modulated_homogeneous"});
   ControlConfig c;
   c.enabled = true;
   c.law = law_from_string(s.get_choice(
@@ -50,6 +50,12 @@ ControlConfig control_config_from_yaml(const common::YamlSection& s) {
     const int seed = n.get_int("seed", 1);
     if (seed < 0) n.fail("seed", "must be >= 0");
     c.seed = static_cast<unsigned>(seed);
+  }
+  if (s.has("lyapunov")) {
+    const common::YamlSection l = s.section("lyapunov");
+    l.allow_only({"reversal_lead", "motion_window_s"});
+    c.reversal_lead = l.get_double_in("reversal_lead", c.reversal_lead, 0.0, 100.0);
+    c.motion_window_s = l.get_double_in("motion_window_s", c.motion_window_s, 0.0, 10.0);
   }
   if (s.has("clipped_optimal")) {
     const common::YamlSection o = s.section("clipped_optimal");
@@ -78,7 +84,8 @@ std::string control_config_to_yaml(const ControlConfig& c) {
   o << std::setprecision(17) << "control:\n  law: " << to_string(c.law)
     << "\n  min_kinetic_friction_kip: " << c.min_kinetic_friction_kip << "\n  sensors:\n    accel_noise_g: " << c.accel_noise_g
     << "\n    drift_noise_in: " << c.drift_noise_in << "\n    force_noise_kip: " << c.force_noise_kip
-    << "\n    delay_steps: " << c.delay_steps << "\n    seed: " << c.seed
+    << "\n    delay_steps: " << c.delay_steps << "\n    seed: " << c.seed << "\n  lyapunov:\n    reversal_lead: " << c.reversal_lead
+    << "\n    motion_window_s: " << c.motion_window_s
     << "\n  clipped_optimal:\n    drift_weight_per_in2: " << c.drift_weight_per_in2
     << "\n    velocity_weight: " << c.velocity_weight << "\n    force_weight_per_kip2: " << c.force_weight_per_kip2
     << "\n    ground_accel_g: " << c.ground_accel_g << "\n    sensor_noise_g: " << c.sensor_noise_g
@@ -112,6 +119,10 @@ Controller::Controller(const ControlConfig& config, const BuildingMatrices& b, c
   desired_force_.assign(nd_, 0.0);
   reversal_disp_.assign(nd_, 0.0);
   last_vel_sign_.assign(nd_, 0.0);
+  reversal_release_.assign(nd_, 0);
+  // At least 3 samples (a quadratic); motion_window_s rounded to whole steps.
+  motion_fit_ = QuadraticMotionFit(std::max(3, static_cast<int>(std::lround(config.motion_window_s / dt_s))), dt_s);
+  ring_fit_.setZero(nd_, motion_fit_.samples());
   if (config.law == Law::clipped_optimal) {
     // Continuous model of the building, state z = [x; ẋ], input u = F (damper forces),
     // disturbance ü_g; measured y = absolute floor accelerations = -M⁻¹(K x + C ẋ + Γ F).
@@ -157,6 +168,9 @@ void Controller::reset() {
   drum_prev_.setZero();
   std::fill(reversal_disp_.begin(), reversal_disp_.end(), 0.0);
   std::fill(last_vel_sign_.begin(), last_vel_sign_.end(), 0.0);
+  std::fill(reversal_release_.begin(), reversal_release_.end(), 0);
+  fit_pos_ = 0;
+  fit_count_ = 0;
   if (xhat_.size()) {
     xhat_.setZero();
     xpred_.setZero();
@@ -184,6 +198,11 @@ void Controller::measure(const Measurements& m) {
   drum_prev_ = frames_ == 1 ? ring_drum_.col(read) : drum_;
   drum_ = ring_drum_.col(read);
   drum_vel_ = (drum_ - drum_prev_) / dt_;  // backward difference of the measured drum displacement
+  if (config_.law == Law::lyapunov) {
+    ring_fit_.col(fit_pos_) = drum_;
+    fit_pos_ = (fit_pos_ + 1) % motion_fit_.samples();
+    ++fit_count_;
+  }
 }
 
 void Controller::compute(const Measurements& m, Eigen::MatrixX2d& targets) {
@@ -207,7 +226,23 @@ void Controller::compute(const Measurements& m, Eigen::MatrixX2d& targets) {
       case Law::passive_on: t = inverse_.strongest(); break;
       case Law::lyapunov: {
         const FrictionRange r = inverse_.range(v, drum_[k]);
-        t = inverse_.targets(force_[k] * v >= 0.0 ? r.max_kip : r.min_kip, v, drum_[k]);
+        bool release = force_[k] * v < 0.0;  // the band gives its stored energy back
+        reversal_release_[k] = 0;
+        const int n_fit = motion_fit_.samples();
+        if (!release && config_.reversal_lead > 0.0 && fit_count_ >= n_fit) {
+          // Predicted reversal: the drum decelerates and its speed falls to the Stribeck velocity
+          // v_c (below it the static level governs, Eq. 5; 0 for the band brake) within
+          // lead x T_rel: (|v̂| - v_c) / |â| < lead T_rel.
+          double vh = 0.0, ah = 0.0;
+          const int oldest = fit_pos_;  // the ring's next write position holds the oldest sample
+          motion_fit_.estimate([&](int i) { return ring_fit_(k, (oldest + i) % n_fit); }, vh, ah);
+          const double lead_s = config_.reversal_lead * inverse_.release_time_s(v, drum_[k]);
+          if (vh * ah < 0.0 && std::abs(vh) < inverse_.stribeck_velocity_in_per_s() + lead_s * std::abs(ah)) {
+            release = true;
+            reversal_release_[k] = 1;
+          }
+        }
+        t = inverse_.targets(release ? r.min_kip : r.max_kip, v, drum_[k]);
         break;
       }
       case Law::clipped_optimal: {

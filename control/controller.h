@@ -9,8 +9,19 @@
 ///  - passive_on: hold the positions of the largest friction the stroke and force limits allow;
 ///  - lyapunov: bang-bang on the instantaneous dissipation F·v of each damper (Dupont, Kasturi &
 ///    Stokes 1997, J. Sound Vib. 202(2) 203-218; the structure's energy as Lyapunov function,
-///    dV/dt contains -Σ F_k v_k): Fc = max when F_k v_k >= 0, else min (the band releases its
-///    stored energy into the structure; least clamping shortens that phase);
+///    dV/dt contains -Σ F_k v_k): Fc = max when F_k v_k >= 0 and no reversal of the drum is due
+///    within the actuators' release time, else min. The band is a spring in series with the
+///    lining (LuGre σ0 z, Eq. 3): a clamped damper that sticks stores F²/(2σ0) and, after the
+///    drum reverses, gives it back to the structure (F·v < 0) until the friction is released.
+///    Dupont et al. release as soon as the stored energy would flow back; our actuators need
+///    T_rel = lag + full swing / velocity limit (0.14 s, FrictionInverse::release_time_s) to
+///    release, so the law starts releasing when the drum's reversal is predicted within
+///    lead · T_rel: the drum decelerates (v̂ â < 0) and |v̂| < lead · T_rel · |â|, with v̂, â from
+///    a quadratic fit of the measured drum displacement over motion_window_s
+///    (control/motion_fit.h). While the drum still moves the low friction lets the lining slip
+///    and the band's stored energy is dissipated (LuGre: σ0² z² |v| / g) instead of returned;
+///    the force lost is F·v near v = 0, where little power flows. lead = 0 is the plain law;
+///    docs/control.md has the derivation and the figures;
 ///  - clipped_optimal: Dyke, Spencer, Sain & Carlson 1996 (Smart Mater. Struct. 5 565-575): a
 ///    discrete LQR desired force f_d = -K x̂ from a steady-state Kalman estimate x̂ of the
 ///    building state from the measured floor absolute accelerations and damper forces (SLICOT
@@ -25,6 +36,7 @@
 
 #include "common/strict_yaml.h"
 #include "control/friction_inverse.h"
+#include "control/motion_fit.h"
 #include "damper/model/brfd_model.h"
 
 #include <Eigen/Dense>
@@ -59,6 +71,12 @@ struct ControlConfig {
   double ground_accel_g = 0.3;          ///< Kalman process noise std (ground acceleration), g
   double sensor_noise_g = 0.01;         ///< Kalman measurement noise std, g (>= accel_noise_g)
   std::string clipping = "continuous";  ///< continuous | on_off
+  // lyapunov
+  /// Release when the drum's reversal is predicted within reversal_lead x the actuators'
+  /// release time (1: the release completes as the drum reverses; 0: the plain F·v law).
+  double reversal_lead = 1.0;
+  /// Window of the quadratic fit that estimates the drum velocity and acceleration, s.
+  double motion_window_s = 0.016;
   // modulated_homogeneous
   double gain_kip_per_in = 8.0;  ///< Fc = gain · |drum displacement at the last reversal|
 };
@@ -99,6 +117,10 @@ class Controller {
   const FrictionInverse& inverse() const { return inverse_; }
   /// Desired kinetic friction of damper k at the last compute(), kip.
   double desired_friction_kip(int k) const { return desired_fc_[k]; }
+  /// lyapunov: whether the last compute() released damper k ahead of a predicted reversal.
+  bool reversal_release(int k) const { return reversal_release_[k] != 0; }
+  /// lyapunov: the fit of the drum motion (control/motion_fit.h) the law predicts reversals with.
+  const QuadraticMotionFit& motion_fit() const { return motion_fit_; }
   /// clipped_optimal: the desired LQR force of damper k at the last compute(), kip.
   double desired_force_kip(int k) const { return desired_force_[k]; }
   /// clipped_optimal: gains (for tests and docs).
@@ -124,6 +146,12 @@ class Controller {
   // law state
   std::vector<double> desired_fc_, desired_force_;
   std::vector<double> reversal_disp_, last_vel_sign_;
+  // lyapunov: the last motion_fit_.samples() measured drum displacements (ring, per damper)
+  QuadraticMotionFit motion_fit_;
+  Eigen::MatrixXd ring_fit_;
+  int fit_pos_ = 0;
+  long fit_count_ = 0;
+  std::vector<char> reversal_release_;
   bool on_off_ = false;  // clipped_optimal clipping: on_off (else continuous)
   // clipped_optimal
   Eigen::MatrixXd ad_, bd_, cy_, dy_, k_lqr_, l_kf_;

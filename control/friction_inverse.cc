@@ -114,6 +114,17 @@ ActuatorTargets FrictionInverse::targets(double fc, double v, double drum_in) co
   return t;
 }
 
+double FrictionInverse::release_time_s(double v, double drum_in) const {
+  const Linear l = linear(v >= 0.0, v, drum_in);
+  const FrictionRange r = range(v, drum_in);
+  const double g = l.gain[0] + l.gain[1];
+  const double d_max = std::clamp((r.max_kip - l.b) / g, d_lo_, d_hi_), d_min = std::clamp((r.min_kip - l.b) / g, d_lo_, d_hi_);
+  const damper::ElectricActuatorParams& e = params_.electric_actuators;
+  // The servo's lag: τ of the first-order response, 2ζ/ω_n = 2ζτ of the second-order one.
+  const double lag_s = e.order == 2 ? 2.0 * e.damping_ratio * e.time_constant_s : e.time_constant_s;
+  return lag_s + std::abs(d_max - d_min) / e.velocity_limit_in_per_s;
+}
+
 ActuatorTargets FrictionInverse::initial() const {
   ActuatorTargets t;
   t.actuator1_in = x1_rest_;

@@ -70,6 +70,15 @@ class FrictionInverse {
   /// (and drum displacement drum_in, which only the band brake's wrap angle uses).
   /// Outside range(v) the targets saturate at the nearer bound (saturated = true).
   ActuatorTargets targets(double fc_kip, double v_in_per_s, double drum_in = 0.0) const;
+  /// Time the electric actuators need to go from the targets of the most friction to those of
+  /// the least at drum velocity v (and drum displacement drum_in): the servo's lag (τ, first
+  /// order; 2ζτ, second order) plus the common stroke between the two at the velocity limit,
+  /// lag + |D(max) - D(min)| / v_lim, s (0.142 s with the paper's model and the default actuators).
+  double release_time_s(double v_in_per_s, double drum_in = 0.0) const;
+  /// Drum speed below which the actuators lose their hold on the friction: the Stribeck velocity
+  /// v_s of Eq. (5) for the semi-active model (g(v) = Fc + (Fs - Fc) exp(-(v/v_s)²), Fs does not
+  /// follow the actuators), 0 for the band brake (its capstan friction has no speed term), in/s.
+  double stribeck_velocity_in_per_s() const { return band_brake_ ? 0.0 : params_.lugre.vs_in_per_s; }
   /// passive_on: the fixed positions giving the largest friction that keeps both directions
   /// within stroke and force limits (at b of zero speed).
   const ActuatorTargets& strongest() const { return strongest_; }

@@ -1,9 +1,10 @@
 // Control laws in the hybrid step loop (in-process substructure, the four shipped records):
 // passive_off is today's passive run number for number; Lyapunov dissipates at least what
-// passive_off does and its switching condition holds at every unsaturated step; clipped-optimal
+// passive_off does on each record and its switching rule holds at every step; clipped-optimal
 // lowers J1 below both passive laws on at least 3 of 4 records (3-story); the electric
 // actuators never leave their stroke nor exceed their velocity limit (from the time histories).
 #include "control/friction_inverse.h"
+#include "control/motion_fit.h"
 #include "damper/model/brfd_config.h"
 #include "run_process.h"
 #include "server/run/hybrid_run.h"
@@ -100,6 +101,32 @@ void expect_actuators_within_limits(const RunConfig& c, const std::string& what)
   }
 }
 
+/// The Lyapunov law's rule (control/controller.h) recomputed from a time history: the targets of
+/// row r come from the force of row r-1, the drum velocity v = (d_r - d_{r-1})/dt and the
+/// quadratic fit of the drum displacement over the window ending at row r. Release (least
+/// friction) when F·v < 0, or when the drum decelerates (v̂ â < 0) with |v̂| < v_s + lead T_rel |â|;
+/// otherwise the most friction. Returns the friction wanted; *ahead says whether the release is
+/// the one ahead of a predicted reversal.
+double lyapunov_friction(const Csv& h, std::size_t r, int drum, int force, const RunConfig& c,
+                         const control::FrictionInverse& inv, const control::QuadraticMotionFit& fit, bool* ahead) {
+  const double d = h.rows[r][drum], v = (d - h.rows[r - 1][drum]) / c.dt_s;
+  const control::FrictionRange range = inv.range(v, d);
+  bool release = h.rows[r - 1][force] * v < 0.0;
+  *ahead = false;
+  const std::size_t n = static_cast<std::size_t>(fit.samples());
+  if (!release && c.control.reversal_lead > 0.0 && r >= n) {
+    double vh = 0.0, ah = 0.0;
+    fit.estimate([&](int i) { return h.rows[r + 1 - n + static_cast<std::size_t>(i)][drum]; }, vh, ah);
+    const double lead_s = c.control.reversal_lead * inv.release_time_s(v, d);
+    if (vh * ah < 0.0 && std::abs(vh) < inv.stribeck_velocity_in_per_s() + lead_s * std::abs(ah)) release = *ahead = true;
+  }
+  return release ? range.min_kip : range.max_kip;
+}
+
+control::QuadraticMotionFit motion_fit_of(const RunConfig& c) {
+  return control::QuadraticMotionFit(std::max(3, static_cast<int>(std::lround(c.control.motion_window_s / c.dt_s))), c.dt_s);
+}
+
 TEST(ControlLoop, PassiveOffReproducesTheUncontrolledRunNumberForNumber) {
   for (const char* file : {"three-story-controlled.yaml", "ten-story-controlled.yaml"}) {
     const RunConfig plain = config(file, kRecords[0], "", 8.0, test_support::fresh_temp_dir("plain"));
@@ -116,41 +143,42 @@ TEST(ControlLoop, PassiveOffReproducesTheUncontrolledRunNumberForNumber) {
   }
 }
 
-TEST(ControlLoop, LyapunovDissipatesAtLeastPassiveOffAndSwitchesOnForceTimesVelocity) {
-  // Ten-story, three dampers (docs/control.md has the three-story building too, where more
-  // clamping makes the single strong damper stick and dissipate less on every record).
-  int at_least = 0;
-  double total_off = 0.0, total_lya = 0.0;
+TEST(ControlLoop, LyapunovDissipatesAtLeastPassiveOffOnEachRecordAndFollowsItsSwitchingRule) {
+  // Ten-story, three semi-active dampers, 20 s of each record (docs/control.md has the
+  // three-story building and the band-brake model too).
   for (const std::string& rec : kRecords) {
     const RunConfig off = config("ten-story-controlled.yaml", rec, "passive_off", 20.0, test_support::fresh_temp_dir("lo"));
     const RunConfig lya = config("ten-story-controlled.yaml", rec, "lyapunov", 20.0, test_support::fresh_temp_dir("ly"));
+    ASSERT_EQ(lya.control.reversal_lead, 1.0);  // the shipped default
     const server::RunSummary a = run(off), b = run(lya);
     const double ea = a.damper_energy_kip_in.sum(), eb = b.damper_energy_kip_in.sum();
     std::cout << rec << ": damper energy passive_off " << ea << " kip-in (" << 100 * ea / a.input_energy_kip_in
               << " % of input), lyapunov " << eb << " kip-in (" << 100 * eb / b.input_energy_kip_in << " % of input)\n";
-    if (eb >= ea) ++at_least;
-    // What the law maximizes, the dampers' share of the energy put in, is higher on every record.
+    // The issue: at least passive_off's dissipated energy on each record. Measured (20 s):
+    // +2.8 % El Centro, +19 % Duzce, +20 % Rinaldi, +28 % Sylmar (without the release ahead
+    // of the reversal El Centro was -2.4 %: the clamped band gave its stored energy back).
+    EXPECT_GE(eb, ea) << rec;
     EXPECT_GT(eb / b.input_energy_kip_in, ea / a.input_energy_kip_in) << rec;
-    total_off += ea;
-    total_lya += eb;
     expect_actuators_within_limits(lya, rec + " lyapunov");
 
-    // Switching condition, step by step: the targets of row r were computed from the force of
-    // row r-1 and the drum velocity (drum_r - drum_{r-1})/dt: max friction iff F·v >= 0.
+    // Switching rule, step by step (lyapunov_friction above), at every damper-step.
     const Csv h = read_csv(lya.output.dir + "/time_history.csv");
     const control::FrictionInverse inv(lya.damper_model, lya.control.min_kinetic_friction_kip);
+    const control::QuadraticMotionFit fit = motion_fit_of(lya);
     const double max_move = lya.damper_model.electric_actuators.velocity_limit_in_per_s * lya.dt_s;
-    long checked = 0, unsaturated = 0;
+    long checked = 0, unsaturated = 0, ahead = 0, clamped = 0;
     for (std::size_t k = 1; k <= 3; ++k) {
       const std::string d = "damper" + std::to_string(k);
       const int drum = h.col(d + "_drum_disp_in"), force = h.col(d + "_force_kip"), fc = h.col(d + "_desired_fc_kip");
       const int x1 = h.col(d + "_actuator1_in"), x2 = h.col(d + "_actuator2_in");
       for (std::size_t r = 2; r < h.rows.size(); ++r) {
+        bool early = false;
+        const double want = lyapunov_friction(h, r, drum, force, lya, inv, fit, &early);
         const double v = (h.rows[r][drum] - h.rows[r - 1][drum]) / lya.dt_s;
-        const control::FrictionRange range = inv.range(v);
-        const double want = h.rows[r - 1][force] * v >= 0.0 ? range.max_kip : range.min_kip;
         ASSERT_NEAR(h.rows[r][fc], want, 1e-9) << rec << " " << d << " row " << r;
         ++checked;
+        ahead += early;
+        clamped += want == inv.range(v, h.rows[r][drum]).max_kip;
         // Where the actuators are not at their velocity limit, the friction they give (Eq. 4 at
         // the positions reached) moves toward the commanded level, never away from it.
         const double m1 = std::abs(h.rows[r][x1] - h.rows[r - 1][x1]), m2 = std::abs(h.rows[r][x2] - h.rows[r - 1][x2]);
@@ -162,15 +190,14 @@ TEST(ControlLoop, LyapunovDissipatesAtLeastPassiveOffAndSwitchesOnForceTimesVelo
         }
       }
     }
-    std::cout << "  switching condition holds at all " << checked << " damper-steps; friction moves toward it at all "
-              << unsaturated << " steps off the velocity limit\n";
+    std::cout << "  switching rule holds at all " << checked << " damper-steps (" << clamped << " clamped, " << ahead
+              << " released ahead of a reversal); friction moves toward it at all " << unsaturated
+              << " steps off the velocity limit\n";
+    // All three branches are taken.
+    EXPECT_GT(ahead, 100) << rec;
+    EXPECT_GT(clamped, checked / 10) << rec;
+    EXPECT_LT(clamped + ahead, checked - checked / 10) << rec;
   }
-  std::cout << "lyapunov >= passive_off on " << at_least << " of 4 records; total " << total_lya << " vs " << total_off
-            << " kip-in\n";
-  // Measured (20 s of each record): +21 %, +18 %, +29 % on Duzce, Rinaldi, Sylmar; -2.3 % on
-  // El Centro, the weakest record, where the clamped dampers stick longer (docs/control.md).
-  EXPECT_GE(at_least, 3);
-  EXPECT_GE(total_lya, total_off);
 }
 
 TEST(ControlLoop, ClippedOptimalLowersPeakDriftOnTheThreeStoryBuilding) {
@@ -228,18 +255,23 @@ TEST(ControlLoop, BandBrakeModelPassiveOffIsThePlainRunAndLyapunovSwitchesAtEver
 
   const Csv h = read_csv(lya.output.dir + "/time_history.csv");
   const control::FrictionInverse inv(bb, lya.control.min_kinetic_friction_kip);
+  const control::QuadraticMotionFit fit = motion_fit_of(lya);
+  EXPECT_EQ(inv.stribeck_velocity_in_per_s(), 0.0);  // the capstan friction has no speed term
   const int drum = h.col("damper1_drum_disp_in"), force = h.col("damper1_force_kip"), fc = h.col("damper1_desired_fc_kip");
-  long on = 0;
+  long on = 0, ahead = 0;
   for (std::size_t r = 2; r < h.rows.size(); ++r) {
+    bool early = false;
+    const double want = lyapunov_friction(h, r, drum, force, lya, inv, fit, &early);
+    ASSERT_NEAR(h.rows[r][fc], want, 1e-9) << "row " << r;
     const double d = h.rows[r][drum], v = (d - h.rows[r - 1][drum]) / lya.dt_s;
-    const control::FrictionRange range = inv.range(v, d);
-    const bool dissipating = h.rows[r - 1][force] * v >= 0.0;
-    ASSERT_NEAR(h.rows[r][fc], dissipating ? range.max_kip : range.min_kip, 1e-9) << "row " << r;
-    on += dissipating;
+    on += want == inv.range(v, d).max_kip;
+    ahead += early;
   }
-  // Both branches are taken (the band's stored force opposes the motion after each reversal).
+  // Every branch is taken (the band's stored force opposes the motion after each reversal; the
+  // drum decelerates toward each reversal).
   EXPECT_GT(on, 100);
-  EXPECT_LT(on, static_cast<long>(h.rows.size()) - 100);
+  EXPECT_GT(ahead, 100);
+  EXPECT_LT(on + ahead, static_cast<long>(h.rows.size()) - 100);
 }
 
 }  // namespace

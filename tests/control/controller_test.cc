@@ -3,8 +3,13 @@
 // the last reversal; the criteria on known histories.
 #include "control/controller.h"
 #include "control/criteria.h"
+#include "control/motion_fit.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string>
 
 namespace {
 
@@ -47,6 +52,84 @@ TEST(Controller, LyapunovSwitchesOnTheSignOfForceTimesVelocity) {
   ctl.compute(f.m(), t);
   EXPECT_NEAR(ctl.desired_friction_kip(0), ctl.inverse().range(-1.0).min_kip, 1e-12);
   EXPECT_GT(t(0, 0), semiactive().semiactive.actuator1_initial_in);  // release = extend
+}
+
+TEST(Controller, LyapunovReleasesAheadOfAPredictedReversal) {
+  // Drum decelerating toward a reversal, d(t) = A sin(ω t) past its zero crossing, force
+  // resisting (F·v > 0): the plain law clamps all the way to the reversal; the law with the lead
+  // releases once (|v| - v_s) / |a| < T_rel, v and a of the quadratic fit. Closed form for the
+  // instant: v = Aω cos ωt, a = -Aω² sin ωt.
+  const double dt = 1.0 / 1024, amp = 1.0, w = 2.0 * M_PI / 1.5;  // 1 in, 1.5 s period
+  control::ControlConfig c;
+  c.enabled = true;
+  c.law = control::Law::lyapunov;
+  control::Controller lead(c, three_story(), semiactive(), dt);
+  c.reversal_lead = 0.0;
+  control::Controller plain(c, three_story(), semiactive(), dt);
+  const double t_rel = lead.inverse().release_time_s(1.0);
+  const double vs = lead.inverse().stribeck_velocity_in_per_s();
+  EXPECT_EQ(vs, semiactive().lugre.vs_in_per_s);  // Eq. (5)'s v_s
+  Eigen::MatrixX2d t(1, 2);
+  Frame f;
+  double first_release_s = -1.0;
+  for (int i = 0; i * dt < 0.375; ++i) {  // up to the reversal at a quarter period
+    const double time = i * dt;
+    f.drum[0] = amp * std::sin(w * time);
+    f.force[0] = 2.0;
+    lead.compute(f.m(), t);
+    plain.compute(f.m(), t);
+    if (i > 1) EXPECT_NEAR(plain.desired_friction_kip(0), plain.inverse().range(1.0).max_kip, 1e-12) << time;
+    if (first_release_s < 0.0 && lead.reversal_release(0)) first_release_s = time;
+  }
+  ASSERT_GT(first_release_s, 0.0);
+  // Predicted: the fitted speed falls to v_s + T_rel |a|.
+  double expected = -1.0;
+  for (double time = 0.0; time < 0.375; time += dt / 64)
+    if (amp * w * std::cos(w * time) < vs + t_rel * amp * w * w * std::sin(w * time)) {
+      expected = time;
+      break;
+    }
+  // Within 3 ms: the quadratic fit over 15 ms of a sine misses its third derivative (2.3 ms here).
+  EXPECT_NEAR(first_release_s, expected, 0.003);
+  EXPECT_GT(first_release_s, 0.375 - t_rel - 0.2);  // not before the motion slows
+  // T_rel = τ + (Fc_max - Fc_min) / |G_1 + G_2| / v_lim with the default actuators (35 ms, 0.6 in/s).
+  const control::FrictionInverse& inv = lead.inverse();
+  const double swing_in = (inv.range(1.0).max_kip - inv.range(1.0).min_kip) / -(inv.gain_kip_per_in(true, 1) + inv.gain_kip_per_in(true, 2));
+  EXPECT_NEAR(t_rel, 0.035 + swing_in / 0.6, 1e-12);
+}
+
+TEST(Controller, LyapunovConfigBlockIsStrict) {
+  const std::string ok = "law: lyapunov\nlyapunov: {reversal_lead: 0.5, motion_window_s: 0.03}\n";
+  const control::ControlConfig c = control::control_config_from_yaml(common::YamlSection(YAML::Load(ok), "t.yaml", ""));
+  EXPECT_EQ(c.reversal_lead, 0.5);
+  EXPECT_EQ(c.motion_window_s, 0.03);
+  EXPECT_EQ(control::ControlConfig{}.reversal_lead, 1.0);
+  for (const char* bad : {"law: lyapunov\nlyapunov: {reversal_lead: -1}\n", "law: lyapunov\nlyapunov: {lead: 1}\n"}) {
+    try {
+      control::control_config_from_yaml(common::YamlSection(YAML::Load(bad), "t.yaml", ""));
+      ADD_FAILURE() << bad;
+    } catch (const common::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("t.yaml"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("lead"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(QuadraticMotionFit, ExactOnAQuadraticAndTheThreePointFormulaAtThreeSamples) {
+  const double dt = 1.0 / 1024;
+  const control::QuadraticMotionFit fit(16, dt);
+  // d(t) = 0.3 + 2 t - 7 t²: v = 2 - 14 t, a = -14 at the newest sample t = 15 dt.
+  auto d = [&](int i) { const double t = i * dt; return 0.3 + 2.0 * t - 7.0 * t * t; };
+  double v = 0.0, a = 0.0;
+  fit.estimate(d, v, a);
+  EXPECT_NEAR(v, 2.0 - 14.0 * 15 * dt, 1e-9);
+  EXPECT_NEAR(a, -14.0, 1e-6);
+  const control::QuadraticMotionFit three(3, dt);
+  auto x = [](int i) { return i == 0 ? 0.1 : i == 1 ? 0.25 : 0.3; };
+  three.estimate(x, v, a);
+  EXPECT_NEAR(v, (3 * 0.3 - 4 * 0.25 + 0.1) / (2 * dt), 1e-9);
+  EXPECT_NEAR(a, (0.3 - 2 * 0.25 + 0.1) / (dt * dt), 1e-4);
+  EXPECT_THROW(control::QuadraticMotionFit(2, dt), std::invalid_argument);
 }
 
 TEST(Controller, PassiveLawsHold) {
