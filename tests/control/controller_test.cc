@@ -78,7 +78,9 @@ TEST(Controller, LyapunovReleasesAheadOfAPredictedReversal) {
     f.force[0] = 2.0;
     lead.compute(f.m(), t);
     plain.compute(f.m(), t);
-    if (i > 1) EXPECT_NEAR(plain.desired_friction_kip(0), plain.inverse().range(1.0).max_kip, 1e-12) << time;
+    if (i > 1) {
+      EXPECT_NEAR(plain.desired_friction_kip(0), plain.inverse().range(1.0).max_kip, 1e-12) << time;
+    }
     if (first_release_s < 0.0 && lead.reversal_release(0)) first_release_s = time;
   }
   ASSERT_GT(first_release_s, 0.0);
