@@ -17,6 +17,7 @@
 #include <sstream>
 #include <unistd.h>
 #include <algorithm>
+#include <functional>
 
 namespace damper {
 
@@ -98,29 +99,38 @@ BenchCase own_delay(const std::string& strength, double delay_s) {
   return c;
 }
 
+// The base model with its friction levels b, Fs scaled at every sample by
+// level(i, friction work so far in kip in), the bristle state carried across samples.
+std::vector<double> generate_with_level_scale(const BrfdParams& p0, const BrfdTest& t,
+                                              const std::function<double(std::size_t, double)>& level) {
+  std::vector<double> f(t.size());
+  double z = 0.0, work = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    BrfdParams p = p0;
+    const double k = level(i, work);
+    p.lugre.fc_fwd_kip *= k;
+    p.lugre.fc_bwd_kip *= k;
+    p.lugre.fs_fwd_kip *= k;
+    p.lugre.fs_bwd_kip *= k;
+    BrfdModel m(p);
+    m.set_bristle_in(z);
+    const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
+    f[i] = i == 0 ? m.force_kip(z, in) : m.step(in, t.dt_s);
+    z = m.bristle_in();
+    work += std::abs(f[i] * t.drum_vel_in_per_s[i]) * t.dt_s;
+  }
+  return f;
+}
+
 // Friction levels b, Fs x (1 + a d^2): even in the drum displacement.
 BenchCase own_friction_d2(const std::string& strength, double a) {
   BenchCase c;
   c.name = "own:friction_d2/" + strength;
   c.family = "self_energizing";
   c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
-    const BrfdParams p0 = with_initial(base, t);
-    std::vector<double> f(t.size());
-    double z = 0.0;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      BrfdParams p = p0;
-      const double k = 1.0 + a * t.drum_disp_in[i] * t.drum_disp_in[i];
-      p.lugre.fc_fwd_kip *= k;
-      p.lugre.fc_bwd_kip *= k;
-      p.lugre.fs_fwd_kip *= k;
-      p.lugre.fs_bwd_kip *= k;
-      BrfdModel m(p);
-      m.set_bristle_in(z);
-      const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
-      f[i] = i == 0 ? m.force_kip(z, in) : m.step(in, t.dt_s);
-      z = m.bristle_in();
-    }
-    return f;
+    return generate_with_level_scale(with_initial(base, t), t, [&](std::size_t i, double) {
+      return 1.0 + a * t.drum_disp_in[i] * t.drum_disp_in[i];
+    });
   };
   return c;
 }
@@ -132,24 +142,8 @@ BenchCase own_lining_wear(const std::string& strength, double a) {
   c.name = "own:lining_wear/" + strength;
   c.family = "pretension";
   c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
-    const BrfdParams p0 = with_initial(base, t);
-    std::vector<double> f(t.size());
-    double z = 0.0, work = 0.0;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      BrfdParams p = p0;
-      const double k = 1.0 / (1.0 + a * work);
-      p.lugre.fc_fwd_kip *= k;
-      p.lugre.fc_bwd_kip *= k;
-      p.lugre.fs_fwd_kip *= k;
-      p.lugre.fs_bwd_kip *= k;
-      BrfdModel m(p);
-      m.set_bristle_in(z);
-      const DamperInput in{t.drum_disp_in[i], t.drum_vel_in_per_s[i], t.actuator1_in[i], t.actuator2_in[i]};
-      f[i] = i == 0 ? m.force_kip(z, in) : m.step(in, t.dt_s);
-      z = m.bristle_in();
-      work += std::abs(f[i] * t.drum_vel_in_per_s[i]) * t.dt_s;
-    }
-    return f;
+    return generate_with_level_scale(with_initial(base, t), t,
+                                     [a](std::size_t, double work) { return 1.0 / (1.0 + a * work); });
   };
   return c;
 }
