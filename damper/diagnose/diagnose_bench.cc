@@ -288,10 +288,12 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05}));
   c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0}));
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0}));
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3}));  // band-force feedback only
   c.push_back(library_case("transition_shape", "weak", {2.5}));
   c.push_back(library_case("transition_shape", "strong", {5.0}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5}));  // a rounder transition than LuGre
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

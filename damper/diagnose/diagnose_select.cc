@@ -61,11 +61,29 @@ RegimeEnergy fold_energy(const std::vector<DiagnoseRecord>& recs, const Fold& fo
   return e;
 }
 
+// Mean of the low-frequency residual `l` over the first `window_s` of the final rest (the level
+// the drum stopped with), or 0 when the record has no final rest.
+double level_at_stop(const std::vector<double>& l, const Segmentation& seg, double dt_s, double window_s) {
+  std::size_t i = 0;
+  while (i < seg.regime.size() && seg.regime[i] != Regime::after_stop) ++i;
+  const std::size_t end = std::min(seg.regime.size(), i + std::max<std::size_t>(1, static_cast<std::size_t>(window_s / dt_s)));
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (; i < end && seg.regime[i] == Regime::after_stop; ++i, ++n) sum += l[i];
+  return n ? sum / static_cast<double>(n) : 0.0;
+}
+
 // Physics signature: low-frequency held-out gain Σ(l_null² − l_cand²) on the samples of the
 // effect's own regimes (the actuators count as moving whatever the exclusive regime says) and on
-// the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0). The force
-// held after the excitation stops is inherited from the last stroke: it counts only for effects
-// acting at rest.
+// the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0).
+// The final rest: the force the drum stopped with is inherited from the last stroke; only what
+// changes after the stop is the work of an effect acting at rest (relaxation, creep). So the rest
+// counts only for effects acting at rest, and for them only the change of the residual from its
+// level at the stop: Σ((l_null − c_null)² − (l_cand − c_cand)²), c the level over the first
+// kStopLevelS of the rest. A constant offset carried into the rest from the stroke before is not
+// a residual static force, whichever effect could also shift it.
+constexpr double kStopLevelS = 0.05;
+
 void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
                     const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, double own_all[2]) {
   auto has = [&spec](const char* g) { return std::find(spec.regimes.begin(), spec.regimes.end(), g) != spec.regimes.end(); };
@@ -79,11 +97,16 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       r1[i] = fp.pred[p.record][i] - r.test.force_kip[i];
     }
     const std::vector<double> l0 = low_frequency_part(r0, r.test.dt_s, so), l1 = low_frequency_part(r1, r.test.dt_s, so);
+    const double c0 = at_rest ? level_at_stop(l0, r.seg, r.test.dt_s, kStopLevelS) : 0.0;
+    const double c1 = at_rest ? level_at_stop(l1, r.seg, r.test.dt_s, kStopLevelS) : 0.0;
     for (std::size_t i = p.begin; i < p.end; ++i) {
       const Regime g = r.seg.regime[i];
+      if (g == Regime::after_stop) {
+        if (at_rest) own += (l0[i] - c0) * (l0[i] - c0) - (l1[i] - c1) * (l1[i] - c1);
+        continue;
+      }
       const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
       const bool mine = moving || has(to_string(g).c_str());
-      if (!mine && !at_rest && g == Regime::after_stop) continue;
       (mine ? own : other) += l0[i] * l0[i] - l1[i] * l1[i];
     }
   }

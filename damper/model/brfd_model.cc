@@ -126,7 +126,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   fc *= factor;
   fs *= factor;
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
-  return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension};
+  return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension, b};
 }
 
 double BrfdModel::stribeck_kip(const DamperInput& in) const {
@@ -195,6 +195,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   f.tension = l.tension;
+  if (e.self_energizing && e.self_energizing->band_force_share != 0.0) {
+    f.servo_share = e.self_energizing->band_force_share;
+    f.servo = f.servo_share / std::max(l.passive, 1e-6);
+  }
   if (e.residual_static) {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
     f.relax = std::exp(-q * q) / e.residual_static->time_constant_s;
@@ -211,7 +215,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
 }
 
 double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
-  const double y = f.tension * spring_force_kip(z) / f.g;  // force ratio
+  const double band = f.tension * spring_force_kip(z);
+  // self_energizing's self-servo: Fc and Fs (so g) follow the force the band carries.
+  const double servo = f.servo != 0.0 ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band), 0.2, 3.0) : 1.0;
+  const double y = band / (f.g * servo);  // force ratio
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   const double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
   double rate = v - std::abs(v) * shaped;
@@ -313,14 +320,18 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
   const bool shaped = e.transition_shape && e.transition_shape->exponent != 1.0;
   const bool soft = e.backlash && (e.backlash->retension_in > 0.0 || e.backlash->release_ratio != 1.0);
-  if (shaped || soft) {
-    // Nonlinear bristle law (Dahl exponent, or the soft re-tensioning spring): RK4 sub-steps,
-    // enough to keep h × (largest rate constant) <= 0.25.
+  if (shaped || soft || f.servo != 0.0) {
+    // Nonlinear bristle law (Dahl exponent, the soft re-tensioning spring, the self-servo): RK4
+    // sub-steps, enough to keep h × (largest rate constant) <= 0.25. With α < 1 the rate constant
+    // α |y|^(α−1) is largest at small |y|: bounded with |y| >= 0.05.
     const double alpha = shaped ? e.transition_shape->exponent : 1.0;
     const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
     const double release = e.backlash ? e.backlash->release_ratio : 1.0;
-    const double stiff =
-        k * std::max(sp, sn) * alpha * std::pow(std::max(1.0, y0), alpha - 1.0) * 1.5 * release + relax;
+    const double slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
+    // Self-servo: g φ_s with φ_s at the step's start (it changes little over one step), twice.
+    const double servo =
+        f.servo != 0.0 ? 2.0 / std::clamp(1.0 - f.servo_share + f.servo * y0 * f.g, 0.2, 3.0) : 1.0;
+    const double stiff = k * std::max(sp, sn) * slope * servo * 1.5 * release + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
     const double h = dt_s / n;
     double z = z_in_;

@@ -140,11 +140,14 @@ class BrfdModel final : public DamperModel {
   struct Levels {
     double fc, fs;   // kinetic and static friction (kip, magnitudes) of one direction
     double tension;  // N_λ of the pretension effect (1 without it)
+    double passive;  // b, the passive kinetic friction of the direction (kip)
   };
   Levels levels(const DamperInput& in, bool forward) const;
   struct Frame {
     double g = 1.0;        // Stribeck function g(v), kip
     double tension = 1.0;  // N_λ
+    double servo = 0.0;    // η / b of self_energizing's band-force feedback, 1/kip (0: none)
+    double servo_share = 0.0;  // η
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
     double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
   };

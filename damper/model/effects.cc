@@ -80,18 +80,19 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
-    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"});
+    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
     x.drum_abs_per_in = p.get_double_in("drum_abs_per_in", 0.0, -5.0, 5.0);
     x.abs_exponent = p.get_double_in("abs_exponent", 1.0, 0.1, 10.0);
+    x.band_force_share = p.get_double_in("band_force_share", 0.0, -0.95, 0.95);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
     t.allow_only({"exponent"});
-    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 50.0)};
+    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0)};
   }
   return e;
 }
@@ -247,12 +248,13 @@ std::vector<EffectSpec> build_library() {
       std::function<std::vector<double>(const PretensionEffect&)>(
           [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in}; })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
-      "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut)",
-      "Fc, Fs x (1 + kappa_dir d + mu |d|^p), kappa_fwd for v >= 0, kappa_bwd for v < 0",
+      "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
+      "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0",
       {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false},
        {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false},
        {"drum_abs_per_in", -0.4, 0.4, 0.0, 0.1, false},
-       {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true}},
+       {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true},
+       {"band_force_share", -0.6, 0.6, 0.0, 0.2, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -260,15 +262,17 @@ std::vector<EffectSpec> build_library() {
         p.drum_bwd_per_in = t[1];
         p.drum_abs_per_in = t[2];
         p.abs_exponent = t[3];
+        p.band_force_share = t[4];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
-        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent};
+        return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
+                                   p.band_force_share};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
-      "transition_shape", "sharper stick-to-slip transition (Dahl exponent of the bristle law)",
+      "transition_shape", "shape of the stick-to-slip transition, sharper or smoother (Dahl exponent of the bristle law)",
       "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent (LuGre: exponent = 1)",
-      {{"exponent", 1.0, 12.0, 1.0, 3.0, true}}, &ModelEffects::transition_shape,
+      {{"exponent", 0.3, 12.0, 1.0, 3.0, true}}, &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>(
           [](const std::vector<double>& t) { return TransitionShapeEffect{t[0]}; }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>(
@@ -288,7 +292,9 @@ std::vector<EffectSpec> build_library() {
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});
   sig("pretension", {"actuators", "sliding"}, {"self_energizing", "asymmetry", "actuator_lag"});
   sig("self_energizing", {"sliding", "actuators"}, {"pretension", "asymmetry"});
-  sig("transition_shape", {"reversal", "sticking"}, {"backlash", "residual_static", "velocity"});
+  // A sharper transition (α > 1) acts within the first travel after a reversal; a smoother one
+  // (α < 1) approaches the sliding force α times as fast as LuGre, well into the stroke.
+  sig("transition_shape", {"reversal", "sticking", "sliding"}, {"backlash", "residual_static", "velocity"});
   return lib;
 }
 

@@ -64,10 +64,18 @@
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
 ///    either way, e.g. the band wrapping further round the drum, or wear/heating of the lining;
-///    p shapes it: the capstan law e^(μθ) grows faster than linearly, p > 1).
-///  - transition_shape (exponent = α): sharper stick-to-slip transition (Dahl's exponent). With
+///    p shapes it: the capstan law e^(μθ) grows faster than linearly, p > 1). And with the force
+///    the band carries (band_force_share = η; the self-servo of a band brake: the friction the drum
+///    drags into the band raises the band's contact pressure, Fc and Fs follow the carried force):
+///      Fc, Fs × φ_s,  φ_s = clamp(1 + η (|N_λ S(z)| / b − 1), 0.2, 3)
+///    b the passive kinetic friction of the direction: passive steady sliding is unchanged
+///    (|N S| = b, φ_s = 1); right after a reversal the unloaded band grips less (φ_s = 1 − η), and a
+///    tension raised by the actuators is amplified, S = (b + ΔFc)(1 − η)/(1 − η (b + ΔFc)/b).
+///    η ≠ 0 makes the bristle ODE nonlinear: stepped by RK4 sub-steps.
+///  - transition_shape (exponent = α): shape of the stick-to-slip transition (Dahl's exponent). With
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
-///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation)
+///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation;
+///      α < 1: the stiffness falls from the start of the stroke, a smoother, rounder transition)
 ///    Steady sliding is unchanged (|y| = 1). Stepped by RK4 sub-steps (the ODE is no longer linear).
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
@@ -131,11 +139,12 @@ struct SelfEnergizingEffect {
   double drum_bwd_per_in = 0.0;  ///< κ_b: same for v < 0
   double drum_abs_per_in = 0.0;  ///< μ: relative change with |d|^p, both directions (per in^p)
   double abs_exponent = 1.0;     ///< p of |d|^p (> 0; 1: linear in the rotation)
+  double band_force_share = 0.0; ///< η: share of the carried band force fed back into the contact pressure
 };
 
 /// Shape of the stick-to-slip transition (see file comment).
 struct TransitionShapeEffect {
-  double exponent = 1.0;  ///< α >= 1 (1: LuGre)
+  double exponent = 1.0;  ///< α > 0 (1: LuGre; > 1 sharper, < 1 smoother transition)
 };
 
 /// The effects switched on in a model (all absent by default: the paper's model).

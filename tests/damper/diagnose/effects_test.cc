@@ -115,8 +115,11 @@ TEST(Effects, StepMatchesRk4OfTheBristleRate) {
   p.effects.self_energizing = SelfEnergizingEffect{-0.15, 0.1};
   SyntheticOptions o;
   o.rate_hz = 256.0;
-  for (double alpha : {1.0, 3.0}) {
-    p.effects.transition_shape = TransitionShapeEffect{alpha};
+  // 1: exact pieces; 3 and 0.5: sharper and smoother transition (RK4 sub-steps); 1 with the
+  // self-servo of self_energizing (RK4 sub-steps).
+  for (double alpha : {1.0, 3.0, 0.5, -1.0}) {
+    p.effects.transition_shape = TransitionShapeEffect{alpha > 0.0 ? alpha : 1.0};
+    p.effects.self_energizing->band_force_share = alpha > 0.0 ? 0.0 : 0.3;
     BrfdModel exact(p), rk(p);
     const double dt = 1.0 / o.rate_hz;
     const int n = static_cast<int>(o.motion_s * o.rate_hz);
@@ -318,6 +321,46 @@ TEST(Effects, SelfEnergizingGrowsWithTheRotationEitherWay) {
       in.drum_disp_in = d;
       in.drum_vel_in_per_s = 1.0;
       EXPECT_NEAR(m.kinetic_friction_kip(in), p.lugre.fc_fwd_kip * (1.0 + 0.2 * std::pow(std::abs(d), power)), 1e-12) << d;
+    }
+  }
+}
+
+// The self-servo of self_energizing in steady sliding (v >> v_s, so g = Fc): the band force S
+// solves S = Fc (1 + η (S/b − 1)), S = Fc (1 − η) / (1 − η Fc / b), with Fc = b + ΔFc set by the
+// actuators; passive (ΔFc = 0) it is b whatever η.
+TEST(Effects, SelfServoAmplifiesATensionRaisedByTheActuatorsAsItsClosedForm) {
+  BrfdParams p = synthetic_base();
+  ASSERT_EQ(p.kind, DamperKind::semiactive);
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  for (double eta : {-0.3, 0.2, 0.35}) {
+    for (double dx : {0.0, -0.005, -0.01}) {  // the actuators retract: more band tension
+      p.effects.self_energizing = SelfEnergizingEffect{};
+      p.effects.self_energizing->band_force_share = eta;
+      BrfdModel m(p);
+      BrfdParams plain = p;
+      plain.effects = {};
+      const BrfdModel without(plain);
+      DamperInput in;
+      in.drum_vel_in_per_s = 4.0;  // vs ~ 0.1-0.5 in/s: the Stribeck term is gone
+      in.actuator1_in = p.semiactive.actuator1_initial_in + dx;
+      in.actuator2_in = p.semiactive.actuator2_initial_in + dx;
+      const double b = without.base_kinetic_friction_kip(in.drum_vel_in_per_s);
+      const double fc = without.kinetic_friction_kip(in);
+      ASSERT_GT(1.0 - eta * fc / b, 0.2);
+      if (dx < -0.008) {
+        ASSERT_GT(fc / b, 1.3) << "the actuators raise the tension";
+      }
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += 4.0 * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      const double exact = std::clamp(fc * (1.0 - eta) / (1.0 - eta * fc / b), 0.2 * fc, 3.0 * fc);
+      EXPECT_NEAR(f, exact, 1e-6 * exact) << "eta " << eta << " dx " << dx;
+      if (dx == 0.0) {
+        EXPECT_NEAR(f, b, 1e-6 * b);
+      }
     }
   }
 }
