@@ -181,6 +181,7 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
   Segmentation s;
   s.train.assign(n, 1);
   s.regime.assign(n, Regime::sliding);
+  s.drum_regime.assign(n, Regime::sliding);
   if (n == 0) return s;
   const std::vector<double>& d = t.drum_disp_in;
   const std::vector<double>& v = t.drum_vel_in_per_s;
@@ -294,13 +295,13 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
   double rev_disp = d[0];  // the motion start counts as a reversal
   for (std::size_t i = 0; i < n; ++i) {
     while (rev_k < s.reversals.size() && s.reversals[rev_k] <= i) rev_disp = d[s.reversals[rev_k++]];
-    Regime r = Regime::sliding;
-    const bool act = moving[i] != 0;
-    if (i >= rest) r = Regime::after_stop;
-    else if (std::abs(d[i] - rev_disp) < o.reversal_travel_in) r = Regime::reversal;
-    else if (act) r = Regime::actuators;
-    else if (std::abs(v[i]) < v_stick) r = Regime::sticking;
-    s.regime[i] = r;
+    Regime drum = Regime::sliding;
+    if (i >= rest) drum = Regime::after_stop;
+    else if (std::abs(d[i] - rev_disp) < o.reversal_travel_in) drum = Regime::reversal;
+    else if (std::abs(v[i]) < v_stick) drum = Regime::sticking;
+    s.drum_regime[i] = drum;
+    // Exclusive regime: the actuators' motion ranks between reversal and sticking.
+    s.regime[i] = moving[i] != 0 && (drum == Regime::sliding || drum == Regime::sticking) ? Regime::actuators : drum;
   }
   return s;
 }

@@ -71,6 +71,10 @@ struct Segmentation {
   std::vector<std::uint8_t> train;       ///< per sample: 1 training, 0 held-out
   std::vector<Regime> regime;            ///< per sample, time-domain regime
   std::vector<std::uint8_t> actuators_moving;  ///< per sample: the actuators move (whatever the regime)
+  /// Per sample, the state of the drum alone (after_stop, reversal, sticking or sliding: the
+  /// regime with the actuators left out). The drum and the actuators are two independent axes:
+  /// an effect of the drum motion acts whether or not the actuators are displaced.
+  std::vector<Regime> drum_regime;
   /// Contiguous spans [begin, end) with their split label, in order (for reports/figures).
   struct Span {
     std::size_t begin, end;

@@ -74,8 +74,8 @@ double level_at_stop(const std::vector<double>& l, const Segmentation& seg, doub
 }
 
 // Physics signature: low-frequency held-out gain Σ(l_null² − l_cand²) on the samples of the
-// effect's own regimes (the actuators count as moving whatever the exclusive regime says) and on
-// the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0).
+// effect's own regimes (by the drum's state, Segmentation::drum_regime; for effects acting through
+// the actuators also every sample where they move) and on the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0).
 // The final rest: the force the drum stopped with is inherited from the last stroke; only what
 // changes after the stop is the work of an effect acting at rest (relaxation, creep). So the rest
 // counts only for effects acting at rest, and for them only the change of the residual from its
@@ -105,8 +105,12 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
         if (at_rest) own += (l0[i] - c0) * (l0[i] - c0) - (l1[i] - c1) * (l1[i] - c1);
         continue;
       }
+      // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
+      // through them (the drum and the actuators are independent axes: a speed law acts while
+      // the actuators are displaced too).
       const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
-      const bool mine = moving || has(to_string(g).c_str());
+      const Regime drum = r.seg.drum_regime.empty() ? g : r.seg.drum_regime[i];
+      const bool mine = moving || has(to_string(drum).c_str());
       (mine ? own : other) += l0[i] * l0[i] - l1[i] * l1[i];
     }
   }

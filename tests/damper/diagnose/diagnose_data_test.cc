@@ -59,6 +59,20 @@ TEST(DiagnoseData, SplitAndRegimesFollowTheDrive) {
   EXPECT_EQ(at(6.0), Regime::sliding);
   EXPECT_EQ(at(4.25), Regime::actuators);
   EXPECT_EQ(at(9.47), Regime::sticking);
+  // The drum's own state ignores the actuators: where they move the drum slides or sticks, and
+  // everywhere else it is the exclusive regime.
+  std::size_t sliding_under_actuators = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (s.regime[i] == Regime::actuators) {
+      ASSERT_TRUE(s.drum_regime[i] == Regime::sliding || s.drum_regime[i] == Regime::sticking) << i;
+      ASSERT_EQ(s.actuators_moving[i], 1) << i;
+      sliding_under_actuators += s.drum_regime[i] == Regime::sliding ? 1 : 0;
+    } else {
+      ASSERT_EQ(s.drum_regime[i], s.regime[i]) << i;
+    }
+  }
+  EXPECT_EQ(s.drum_regime[static_cast<std::size_t>(std::lround(4.25 / dt))], Regime::sliding);
+  EXPECT_GT(sliding_under_actuators * dt, 0.5);
 }
 
 TEST(DiagnoseData, LocalizeAttributesEnergyToRegimesAndChatter) {
