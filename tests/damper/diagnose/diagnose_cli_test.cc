@@ -141,13 +141,14 @@ namespace {
 
 // The shipped diagnosed config, with effects switched on, drives a hybrid run: hybridsim spawns
 // brfd-substructure, whose virtual damper steps the extended model (2 s of El Centro over LCM). The
-// diagnosed config itself holds no effect since the issue-11 method (docs/diagnose.md), so the
-// test appends an `effects:` block (backlash with re-tensioning and release, transition_shape, the
-// velocity effect with its slip memory) to exercise the extended model in the substructure.
+// diagnosed config holds pretension (with wear) and self_energizing (with the self-servo); the test
+// adds backlash with re-tensioning and release, transition_shape and the velocity effect with its
+// slip memory to exercise the rest of the extended model in the substructure.
 TEST(DiagnoseCli, ShippedDiagnosedConfigRunsInAHybridRun) {
   const std::string dir = fresh_temp_dir("diagnose_cli_run");
   damper::BrfdParams model = damper::load_brfd_params(test_paths::source_dir() + "/configs/brfd-diagnosed-semiactive.yaml");
-  ASSERT_TRUE(model.effects.empty()) << "the diagnosed config now holds effects: test them as shipped";
+  // As shipped it holds pretension and self_energizing (with the self-servo); the others are added.
+  ASSERT_TRUE(model.effects.pretension && model.effects.self_energizing) << "the diagnosed config changed: update this test";
   model.effects.backlash = damper::BacklashEffect{0.04, 0.02, 1.0, 3.0};
   model.effects.velocity = damper::VelocityEffect{2.0, 0.0, 0.0, -0.05, 1.0, 0.05};
   model.effects.transition_shape = damper::TransitionShapeEffect{3.0};
@@ -162,6 +163,8 @@ TEST(DiagnoseCli, ShippedDiagnosedConfigRunsInAHybridRun) {
   EXPECT_NE(used.find("transition_shape:"), std::string::npos) << used;
   EXPECT_NE(used.find("release_ratio: 3"), std::string::npos) << used;
   EXPECT_NE(used.find("memory_in: 0.05"), std::string::npos) << used;
+  EXPECT_NE(used.find("band_force_share:"), std::string::npos) << used;
+  EXPECT_NE(used.find("wear_per_kip_in:"), std::string::npos) << used;
   const std::smatch m = [&] {
     std::smatch x;
     std::regex_search(r.out, x, std::regex("damper 1: peak force ([0-9.]+) kip"));
