@@ -45,6 +45,7 @@ struct Injector {
   long every = 64, start_after = 128, rounds = 24;
   std::string only;  ///< inject only this kind ("" = all)
 
+  std::string ready_file;  ///< written once every subscription is in place
   std::optional<messages::MessageAuth> auth;  ///< the run key, once it exists
   messages::MessageAuth wrong{messages::generate_run_key()};
   std::mt19937 rng{20261123};
@@ -219,6 +220,9 @@ struct Injector {
       lcm.subscribe(ch.sensor_frame(), [this](const messages::RawMessage& m) {
         keep_if_authentic<hybrid_lcm::sensor_frame_t>(m, last_frame, [](const auto&) { return true; });
       });
+    // Subscribed: say so, so that a test starts the run only now (a fixed sleep could lose START
+    // on a loaded machine).
+    if (!ready_file.empty()) std::ofstream(ready_file) << "subscribed\n";
     // Until the rounds are done, or the run has been silent for 3 s (it ended), or 120 s.
     const auto t0 = std::chrono::steady_clock::now();
     while (rounds_done < rounds) {
@@ -246,12 +250,15 @@ int main(int argc, char** argv) {
   app.add_option("--rounds", rounds);
   app.add_option("--only", only, "inject only this kind, e.g. FORCE_FEEDBACK/bad_mac");
   app.add_flag("--physical", physical, "also sensor frames");
+  std::string ready_file;
+  app.add_option("--ready-file", ready_file, "written once the injector is subscribed");
   CLI11_PARSE(app, argc, argv);
   try {
     Injector inj(url);
     inj.ch.prefix = prefix;
     inj.key_file = key_file;
     inj.physical = physical;
+    inj.ready_file = ready_file;
     inj.every = every;
     inj.start_after = start_after;
     inj.rounds = rounds;

@@ -91,10 +91,14 @@ Injected run_with_injector(const std::string& dir, const std::string& out, const
                            std::vector<std::string> injector_args, test_support::ProcessResult& run) {
   fs::create_directories(dir + "/injector");
   std::vector<std::string> argv{injector(), "--url", "udpm://239.255.76.67:7667?ttl=0", "--key-file", out + "/run.key",
-                                "--out", dir + "/injected.json"};
+                                "--out", dir + "/injected.json", "--ready-file", dir + "/injector.ready"};
   argv.insert(argv.end(), injector_args.begin(), injector_args.end());
-  Child inj = start(argv, dir + "/injector");  // subscribed before the run's START goes out
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  Child inj = start(argv, dir + "/injector");
+  // The run starts only once the injector is subscribed, so that it sees START (a fixed 200 ms
+  // sleep could lose it on a loaded machine); 30 s at most.
+  for (int i = 0; i < 3000 && !fs::exists(dir + "/injector.ready"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(fs::exists(dir + "/injector.ready")) << "the injector did not subscribe in 30 s: " << inj.err();
   std::vector<std::string> cmd{hybridsim(), "run"};
   cmd.insert(cmd.end(), args.begin(), args.end());
   run = test_support::run_process(cmd);
