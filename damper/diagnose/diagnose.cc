@@ -191,6 +191,18 @@ ModelState select_effects(const std::vector<DiagnoseRecord>& recs, const ModelSt
     }
     const CandidateScore& w = r.scores[static_cast<std::size_t>(r.winner)];
     log(format_evidence(w));
+    const std::vector<std::string> at_bounds = parameters_at_outer_bounds(w);
+    if (!at_bounds.empty()) {
+      std::string list;
+      for (const std::string& b : at_bounds) list += (list.empty() ? "" : ", ") + b;
+      const std::string note = "round " + std::to_string(round) + ": " + w.effect +
+                               " ends with parameters at an outer search bound (" + list +
+                               "): the data ask for more than the family allows, so the shape may be another "
+                               "effect's and these values are not identified; the name is the library's best "
+                               "explanation, not a measured mechanism";
+      log("  caution: " + note.substr(note.find(": ") + 2));
+      result.notes.push_back(note);
+    }
     current = r.next;
     added.push_back(&effect_spec(w.effect));
     result.added.push_back(w.effect);

@@ -3,6 +3,7 @@
 #include "common/gnuplot.h"
 #include "common/number_format.h"
 #include "damper/model/brfd_config.h"
+#include "damper/diagnose/diagnose_select.h"
 #include "damper/model/effects.h"
 
 #include <algorithm>
@@ -354,7 +355,7 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
   {
     std::ofstream c = open_out((out / "candidates.csv").string());
     c << "round,effect,params,heldout_rmse_null_kip,heldout_rmse_kip,heldout_gain,excess_share,parts_improved,"
-         "parts_changed,signature_share,confidence,verdict,accepted\n";
+         "parts_changed,signature_share,confidence,verdict,accepted,params_at_outer_bound\n";
     for (const CandidateScore& s : result.candidates) {
       std::string params;
       for (std::size_t j = 0; j < s.theta.size(); ++j) params += (j ? " " : "") + s.parameter_names[j] + "=" + format_significant(s.theta[j], 6);
@@ -362,7 +363,10 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
       std::replace(verdict.begin(), verdict.end(), ',', ';');
       c << s.round << ',' << s.effect << ',' << params << ',' << s.heldout_rmse_null_kip << ',' << s.heldout_rmse_kip << ','
         << s.heldout_gain << ',' << s.excess_share << ',' << s.parts_improved << ',' << s.parts_changed << ','
-        << s.signature_share << ',' << s.confidence << ',' << verdict << ',' << (s.accepted ? 1 : 0) << '\n';
+        << s.signature_share << ',' << s.confidence << ',' << verdict << ',' << (s.accepted ? 1 : 0) << ',';
+      const std::vector<std::string> at_bounds = parameters_at_outer_bounds(s);
+      for (std::size_t j = 0; j < at_bounds.size(); ++j) c << (j ? "; " : "") << at_bounds[j];
+      c << '\n';
     }
   }
   {

@@ -408,4 +408,23 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   return out;
 }
 
+std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c) {
+  std::vector<std::string> out;
+  const EffectSpec& spec = effect_spec(c.effect);
+  for (std::size_t j = 0; j < spec.parameters.size() && j < c.theta.size(); ++j) {
+    const EffectParameter& p = spec.parameters[j];
+    // Distance to a bound in the search's own (unit, log where marked) coordinates.
+    auto unit = [&](double x) {
+      return p.log_scale ? (std::log(x) - std::log(p.lo)) / (std::log(p.hi) - std::log(p.lo)) : (x - p.lo) / (p.hi - p.lo);
+    };
+    const double u = unit(c.theta[j]);
+    const double tol = 1e-3;
+    const bool at_lo = u <= tol && p.null_value != p.lo;
+    const bool at_hi = u >= 1.0 - tol && p.null_value != p.hi;
+    if (at_lo || at_hi)
+      out.push_back(p.name + "=" + format_significant(c.theta[j], 4) + (at_lo ? " (lower bound)" : " (upper bound)"));
+  }
+  return out;
+}
+
 }  // namespace damper

@@ -65,6 +65,13 @@ struct RoundOutcome {
   std::string stop_reason;              ///< set when the round adds nothing
 };
 
+/// Identifiability of a fitted candidate: its parameters that end at an OUTER search bound (a bound
+/// that is not the parameter's null value), as "name=value (upper bound)". A null-side bound
+/// (slack 0, a share 0) means that part of the family is unused; an outer bound means the data ask
+/// for more than the family allows: the shape may be another effect's or stronger than the library
+/// reaches, and the fitted values are not identified. Reported with the evidence, not a gate.
+std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c);
+
 /// Runs one round of the selection from `current` (effects `added` already added by this run)
 /// over the candidates `todo`.
 RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const ValidationPlan& plan,

@@ -190,7 +190,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const bool forward = v >= 0.0;
   const Levels l = levels(in, forward);
   Frame f;
-  const double r = std::abs(v) / p.vs_in_per_s;
+  const double vs = e.asymmetry ? p.vs_in_per_s * (forward ? 1.0 + e.asymmetry->stribeck_speed
+                                                             : 1.0 - e.asymmetry->stribeck_speed)
+                                : p.vs_in_per_s;
+  const double r = std::abs(v) / vs;
   const VelocityEffect* ve = e.velocity ? &*e.velocity : nullptr;
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
@@ -230,8 +233,10 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
 
 double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const LugreParams& p = params_.lugre;
-  const double viscous = p.sigma2_kip_s_per_in +
-                         (params_.effects.velocity ? params_.effects.velocity->added_viscous_kip_s_per_in : 0.0);
+  const AsymmetryEffect* as = params_.effects.asymmetry ? &*params_.effects.asymmetry : nullptr;
+  const double sigma2 = as ? p.sigma2_kip_s_per_in * (v >= 0.0 ? 1.0 + as->viscous : 1.0 - as->viscous)
+                           : p.sigma2_kip_s_per_in;
+  const double viscous = sigma2 + (params_.effects.velocity ? params_.effects.velocity->added_viscous_kip_s_per_in : 0.0);
   return f.tension * spring_force_kip(z) +
          engaged_share(z) * (p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) + viscous * v);
 }

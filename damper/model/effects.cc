@@ -50,10 +50,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("asymmetry")) {
     const common::YamlSection a = s.section("asymmetry");
-    a.allow_only({"level", "stiffness"});
+    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
+    x.stribeck_speed = a.get_double_in("stribeck_speed", 0.0, -0.95, 0.95);
+    x.viscous = a.get_double_in("viscous", 0.0, -0.95, 0.95);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -195,18 +197,25 @@ std::vector<EffectSpec> build_library() {
         return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio};
       })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
-      "asymmetry", "direction asymmetry of friction levels and band stiffness",
-      "Fc, Fs x (1 +- level) forward/backward; sigma0 x (1 +- stiffness) for z >= 0 / z < 0",
-      {{"level", -0.5, 0.5, 0.0, 0.1, false}, {"stiffness", -0.8, 0.8, 0.0, 0.3, false}},
+      "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force",
+      "Fc, Fs x (1 +- level), vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
+      "sigma0 x (1 +- stiffness) for z >= 0 / z < 0",
+      {{"level", -0.5, 0.5, 0.0, 0.1, false},
+       {"stiffness", -0.8, 0.8, 0.0, 0.3, false},
+       {"stribeck_speed", -0.7, 0.7, 0.0, 0.2, false},
+       {"viscous", -0.8, 0.8, 0.0, 0.2, false}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
         a.level = t[0];
         a.stiffness = t[1];
+        a.stribeck_speed = t[2];
+        a.viscous = t[3];
         return a;
       }),
-      std::function<std::vector<double>(const AsymmetryEffect&)>(
-          [](const AsymmetryEffect& a) { return std::vector<double>{a.level, a.stiffness}; })));
+      std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
+        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous};
+      })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape, rate-dependent capacity, parallel viscous force, log-rate levels with slip memory",
       "g(v) = phi Fc + phi (Fs - Fc) exp(-|v/vs|^n); F += c_a v; phi = 1 + s ln(v~/v_r), v~ = |v| + 0.01 "

@@ -32,9 +32,12 @@
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
 ///      dx̃_k/dt = (x_k − x̃_k)/τ_a,   ÿ_k = ω² (x̃_k − y_k) − 2ζω ẏ_k,  ω = 2π/T
 ///    (τ_a = 0: x̃ = x; T = 0: y = x̃); x̃_k(0) = y_k(0) = x'_k, ẏ_k(0) = 0.
-///  - asymmetry (level = a_F, stiffness = a_σ): direction asymmetry beyond per-direction Fc/Fs:
+///  - asymmetry (level = a_F, stiffness = a_σ, stribeck_speed = a_v, viscous = a_2): direction
+///    asymmetry beyond per-direction Fc/Fs (a different band is taut in each direction, so every
+///    band property may differ, not only the levels):
 ///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
-///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0).
+///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0);
+///      Stribeck speed v_s × (1 ± a_v) and viscous σ2 × (1 ± a_2), forward + / backward −.
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -116,6 +119,8 @@ struct ActuatorLagEffect {
 struct AsymmetryEffect {
   double level = 0.0;      ///< a_F: friction levels × (1 ± a_F), forward +; |a_F| < 1
   double stiffness = 0.0;  ///< a_σ: band stiffness σ0 × (1 ± a_σ) by the sign of z; |a_σ| < 1
+  double stribeck_speed = 0.0;  ///< a_v: Stribeck speed v_s × (1 ± a_v), forward +; |a_v| < 1
+  double viscous = 0.0;         ///< a_2: viscous coefficient σ2 × (1 ± a_2), forward +; |a_2| < 1
 };
 /// Velocity dependence beyond Eq. (2) (see file comment).
 struct VelocityEffect {

@@ -42,7 +42,7 @@ ModelEffects all_effects() {
   e.residual_static->ratio = 0.5;
   e.residual_static->time_constant_s = 0.2;
   e.actuator_lag = ActuatorLagEffect{0.1, 0.2, 0.6};
-  e.asymmetry = AsymmetryEffect{0.1, 0.3};
+  e.asymmetry = AsymmetryEffect{0.1, 0.3, 0.2, -0.3};
   e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05};
   e.pretension = PretensionEffect{0.8, 0.7};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5};
@@ -393,6 +393,39 @@ TEST(Effects, WearLowersTheFrictionAsTheClosedFormOfArchardsLaw) {
   }
   EXPECT_EQ(checked, 4);
   EXPECT_LT(f, 0.7 * g);  // the wear is visible: 20 s at 13 in/s
+}
+
+// Asymmetry by direction of every band property: in steady sliding at speed v the force is the
+// Stribeck curve with the direction's levels and Stribeck speed plus the direction's viscous force,
+// F = ±(1 ± a_F)(Fc + (Fs − Fc) exp(−(v/(v_s(1 ± a_v)))²)) + σ2 (1 ± a_2) v (Eqs. 2-3 in steady state).
+TEST(Effects, AsymmetryScalesLevelsStribeckSpeedAndViscousForceByDirection) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.4;
+  const double aF = 0.1, av = 0.4, a2 = -0.5;
+  p.effects.asymmetry = AsymmetryEffect{aF, 0.3, av, a2};
+  for (double v : {-2.0, -0.8, 0.8, 2.0}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);
+    const bool fwd = v > 0.0;
+    const double sign = fwd ? 1.0 : -1.0;
+    const double fc = (fwd ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip) * (1.0 + sign * aF);
+    const double fs = (fwd ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip) * (1.0 + sign * aF);
+    const double r = std::abs(v) / (p.lugre.vs_in_per_s * (1.0 + sign * av));
+    const double expected = sign * (fc + (fs - fc) * std::exp(-r * r)) + p.lugre.sigma2_kip_s_per_in * (1.0 + sign * a2) * v;
+    EXPECT_NEAR(f, expected, 1e-6 * std::abs(expected)) << v;
+    // ... which differs from the levels-only asymmetry by more than the test's tolerance.
+    BrfdParams q = p;
+    q.effects.asymmetry = AsymmetryEffect{aF, 0.3};
+    BrfdModel mq(q);
+    double fq = 0.0;
+    for (int i = 0; i < 40000; ++i) fq = mq.step(in, 1e-4);
+    EXPECT_GT(std::abs(fq - expected), 1e-3) << v;
+  }
 }
 
 TEST(Effects, SteadySlidingIsUnchangedByBacklashAndPretension) {
