@@ -33,15 +33,17 @@ void BrfdModel::reset() {
   slow_speed_ = kInitialSlowSpeed;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
+  stribeck_speed_ = 0.0;
   friction_work_kip_in_ = 0.0;
 }
 
 double BrfdModel::rate_factor(double speed) const {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
-  if (!ve || ve->rate_slope == 0.0) return 1.0;
-  const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_
-                                          : speed + VelocityEffect::kSpeedFloorInPerS;
-  return std::max(0.2, 1.0 + ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s));
+  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0)) return 1.0;
+  const double now = speed + VelocityEffect::kSpeedFloorInPerS;
+  const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
+  return std::max(0.2, 1.0 + ve->direct_slope * std::log(now / ve->reference_speed_in_per_s) +
+                           ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s));
 }
 
 double BrfdModel::engaged_share(double z) const {
@@ -193,8 +195,8 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double vs = e.asymmetry ? p.vs_in_per_s * (forward ? 1.0 + e.asymmetry->stribeck_speed
                                                              : 1.0 - e.asymmetry->stribeck_speed)
                                 : p.vs_in_per_s;
-  const double r = std::abs(v) / vs;
   const VelocityEffect* ve = e.velocity ? &*e.velocity : nullptr;
+  const double r = (ve && ve->stribeck_lag_s > 0.0 ? stribeck_speed_ : std::abs(v)) / vs;
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   f.tension = l.tension;
@@ -236,7 +238,9 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const AsymmetryEffect* as = params_.effects.asymmetry ? &*params_.effects.asymmetry : nullptr;
   const double sigma2 = as ? p.sigma2_kip_s_per_in * (v >= 0.0 ? 1.0 + as->viscous : 1.0 - as->viscous)
                            : p.sigma2_kip_s_per_in;
-  const double viscous = sigma2 + (params_.effects.velocity ? params_.effects.velocity->added_viscous_kip_s_per_in : 0.0);
+  const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
+  const double viscous =
+      sigma2 + (ve ? ve->added_viscous_kip_s_per_in + ve->quadratic_viscous_kip_s2_per_in2 * std::abs(v) : 0.0);
   return f.tension * spring_force_kip(z) +
          engaged_share(z) * (p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) + viscous * v);
 }
@@ -306,6 +310,8 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const double speed = std::abs(v);
   if (e.residual_static)
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);
+  if (e.velocity && e.velocity->stribeck_lag_s > 0.0)  // lagged speed of the Stribeck term: exact
+    stribeck_speed_ = speed + (stribeck_speed_ - speed) * std::exp(-dt_s / e.velocity->stribeck_lag_s);
   if (e.velocity) {
     // Aging law dθ/dt = 1 − ṽ θ/D with the speed held over the step: exact.
     const double d = e.velocity->memory_in;

@@ -168,6 +168,7 @@ class BrfdModel final : public DamperModel {
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
+  double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)

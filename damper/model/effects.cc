@@ -61,7 +61,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("velocity")) {
     const common::YamlSection v = s.section("velocity");
     v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
-                  "reference_speed_in_per_s", "memory_in"});
+                  "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
+                  "stribeck_lag_s"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -69,6 +70,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.rate_slope = v.get_double_in("rate_slope", 0.0, -2.0, 2.0);
     x.reference_speed_in_per_s = v.get_double_in("reference_speed_in_per_s", 1.0, 1e-4, 1e4);
     x.memory_in = v.get_double_in("memory_in", 0.0, 0.0, 100.0);
+    x.direct_slope = v.get_double_in("direct_slope", 0.0, -2.0, 2.0);
+    x.quadratic_viscous_kip_s2_per_in2 = v.get_double_in("quadratic_viscous_kip_s2_per_in2", 0.0, -100.0, 100.0);
+    x.stribeck_lag_s = v.get_double_in("stribeck_lag_s", 0.0, 0.0, 100.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -217,14 +221,18 @@ std::vector<EffectSpec> build_library() {
         return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
-      "velocity", "velocity dependence: Stribeck shape, rate-dependent capacity, parallel viscous force, log-rate levels with slip memory",
-      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v/vs|^n); F += c_a v; phi = 1 + s ln(v~/v_r), v~ = |v| + 0.01 "
+      "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and quadratic viscous force, rate-and-state levels",
+      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v_L/vs|^n), v_L = |v| lagged by tau_L; F += c_a v + c_q v|v|; "
+      "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
       "seen through the aging law over a slip distance D (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
-       {"rate_slope", -0.3, 0.3, 0.0, -0.05, false},
+       {"rate_slope", -0.8, 0.8, 0.0, -0.05, false},
        {"reference_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true},
-       {"memory_in", 0.0, 0.3, 0.0, 0.05, false}},
+       {"memory_in", 0.0, 0.5, 0.0, 0.05, false},
+       {"direct_slope", -0.8, 0.8, 0.0, 0.05, false},
+       {"quadratic_viscous_kip_s2_per_in2", -0.4, 0.4, 0.0, 0.05, false},
+       {"stribeck_lag_s", 0.0, 1.0, 0.0, 0.05, false}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -233,11 +241,15 @@ std::vector<EffectSpec> build_library() {
         v.rate_slope = t[2];
         v.reference_speed_in_per_s = t[3];
         v.memory_in = t[4];
+        v.direct_slope = t[5];
+        v.quadratic_viscous_kip_s2_per_in2 = t[6];
+        v.stribeck_lag_s = t[7];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
         return std::vector<double>{v.stribeck_exponent, v.added_viscous_kip_s_per_in, v.rate_slope,
-                                   v.reference_speed_in_per_s, v.memory_in};
+                                   v.reference_speed_in_per_s, v.memory_in, v.direct_slope,
+                                   v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
@@ -259,9 +271,9 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0",
-      {{"drum_fwd_per_in", -0.4, 0.4, 0.0, -0.1, false},
-       {"drum_bwd_per_in", -0.4, 0.4, 0.0, 0.1, false},
-       {"drum_abs_per_in", -0.4, 0.4, 0.0, 0.1, false},
+      {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
+       {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
+       {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true},
        {"band_force_share", -0.6, 0.6, 0.0, 0.2, false}},
       &ModelEffects::self_energizing,

@@ -49,8 +49,17 @@
 ///    added after residual_static on the benchmark's low-noise cases):
 ///      g(v) = φ Fc + (φ Fs − φ Fc) exp(−|v/v_s|^n) + c_v |v|      (paper: n = 2, c_v = 0)
 ///      F += c_a v (gated by e(z) like σ2 v)
-///      φ = max(0.2, 1 + s ln(ṽ / v_r)),  ṽ = D/θ,  dθ/dt = 1 − (|v| + v_f) θ / D  (aging law; D = 0:
-///      ṽ = |v| + v_f), v_f = 0.01 in/s; θ(0) = D/v_r (φ = 1 at the start).
+///      φ = max(0.2, 1 + a ln((|v| + v_f)/v_r) + s ln(ṽ / v_r)),  ṽ = D/θ,
+///      dθ/dt = 1 − (|v| + v_f) θ / D  (aging law; D = 0: ṽ = |v| + v_f), v_f = 0.01 in/s;
+///      θ(0) = D/v_r (φ = 1 at the start). With the direct slope a (direct_slope) this is the full
+///      Dieterich-Ruina rate-and-state law, a = −s its velocity-neutral form (only the transient
+///      after a change of slip rate remains), a = 0 the steady-state law above.
+///    and two more places (added 2026-11-26, after a blind set showed them missing):
+///      F += c_q v|v|  (quadratic_viscous_kip_s2_per_in2: a nonlinear viscous force, Olsson et al.
+///      1998; gated by e(z) like σ2 v);
+///      the Stribeck term sees the speed through a first-order lag, dṽ_L/dt = (|v| − ṽ_L)/τ_L
+///      (stribeck_lag_s = τ_L; frictional memory, Hess & Soom 1990: friction follows the
+///      velocity late, a hysteresis loop in the friction-velocity plane; τ_L = 0: ṽ_L = |v|).
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -130,6 +139,9 @@ struct VelocityEffect {
   double rate_slope = 0.0;                  ///< s: d(friction level)/d ln(slip rate); 0 = none
   double reference_speed_in_per_s = 1.0;    ///< v_r: slip rate where φ = 1, in/s (> 0)
   double memory_in = 0.0;                   ///< D: slip distance over which φ follows the rate, in
+  double direct_slope = 0.0;                ///< a: direct rate effect on φ (rate-and-state "a"); 0 = none
+  double quadratic_viscous_kip_s2_per_in2 = 0.0;  ///< c_q: force c_q v|v| in parallel with the friction
+  double stribeck_lag_s = 0.0;              ///< τ_L: lag of the speed seen by the Stribeck term, s; 0 = none
   static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).

@@ -2,6 +2,13 @@
 for none, and for effects the printed NRMSE at least halved)."""
 import json, re, sys, collections
 key = json.load(open(sys.argv[1]))
+# Key formats of the blind sets: {id: trial} (set 4) or {"trials": [{"id"|"trial": ..., ...}]}
+# (set 5); noise and input under either name.
+if isinstance(key, dict) and isinstance(key.get('trials'), list):
+    key = {k.get('id', k.get('trial')): k for k in key['trials']}
+for k in key.values():
+    k.setdefault('noise_rms_kip', k.get('noise_rms'))
+    k.setdefault('input_kind', k.get('motion'))
 runs = []
 for d in sys.argv[2:]:
     res = {}

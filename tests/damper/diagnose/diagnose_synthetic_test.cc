@@ -111,15 +111,15 @@ TEST(DiagnoseSelection, CandidatePinnedAtItsNullValueNeverWins) {
 }
 
 // Identifiability caveat: only bounds that are not the parameter's null value count. self_energizing
-// with |d| growth at its upper bound 0.4 and the exponent at its lower bound 0.5 (null 1) is flagged
+// with |d| growth at its upper bound 1.2 and the exponent at its lower bound 0.5 (null 1) is flagged
 // on both; the drum terms at 0 (null) and a backlash with slack 0 (null side) are not.
 TEST(DiagnoseSelection, ParametersAtOuterSearchBoundsAreFlaggedNotNullSideOnes) {
   CandidateScore c;
   c.effect = "self_energizing";
-  c.theta = {0.0, 0.0, 0.4, 0.5, 0.1};
+  c.theta = {0.0, 0.0, 1.2, 0.5, 0.1};
   const std::vector<std::string> flagged = parameters_at_outer_bounds(c);
   ASSERT_EQ(flagged.size(), 2u);
-  EXPECT_EQ(flagged[0], "drum_abs_per_in=0.4 (upper bound)");
+  EXPECT_EQ(flagged[0], "drum_abs_per_in=1.2 (upper bound)");
   EXPECT_EQ(flagged[1], "abs_exponent=0.5 (lower bound)");
   c.effect = "backlash";
   c.theta = {0.0, 0.02, 1.0, 1.0};

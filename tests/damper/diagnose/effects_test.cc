@@ -43,7 +43,7 @@ ModelEffects all_effects() {
   e.residual_static->time_constant_s = 0.2;
   e.actuator_lag = ActuatorLagEffect{0.1, 0.2, 0.6};
   e.asymmetry = AsymmetryEffect{0.1, 0.3, 0.2, -0.3};
-  e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05};
+  e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05, 0.1, 0.05, 0.1};
   e.pretension = PretensionEffect{0.8, 0.7};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5};
   e.transition_shape = TransitionShapeEffect{3.0};
@@ -95,6 +95,7 @@ TEST(Effects, ExactStepDoesNotDependOnSubsteps) {
   p.effects.backlash->retension_in = 0.0;  // idem (the soft re-tensioning spring is nonlinear)
   p.effects.backlash->release_ratio = 1.0;  // idem (RK4 sub-steps)
   p.effects.velocity->memory_in = 0.0;      // a filtered state, held at its end-of-step value like the lag
+  p.effects.velocity->stribeck_lag_s = 0.0;  // idem (the lagged speed of the Stribeck term)
   SyntheticOptions o;
   o.rate_hz = 256.0;
   const std::vector<double> one = run(p, o, 1);
@@ -253,6 +254,89 @@ TEST(Effects, VelocityEffectGivesParallelViscousAndLogRateLevels) {
     if (slip > 0.01) worst = std::max(worst, std::abs(f - expected));  // after the bristle's own transient
   }
   EXPECT_LT(worst, 2e-3 * p.lugre.fc_fwd_kip);
+}
+
+// The three velocity terms added for shapes a blind set showed missing, each against its closed form
+// (σ0 large, so the bristle follows in ~1e-3 in of slip):
+//  - quadratic viscous: steady sliding F = g(v) + (σ2 + c_q |v|) v;
+//  - velocity-neutral rate-and-state (direct slope a = −s): φ = 1 at every steady speed, and after a
+//    step v1 → v2 φ = 1 + a ln(v2'/v_r) + s ln(D/(θ v_r)), θ relaxing from D/v1' to D/v2' over the slip
+//    (v' = v + 0.01 in/s);
+//  - Stribeck lag: after a step from rest to v, g sees v (1 − e^(−t/τ_L)).
+TEST(Effects, VelocityQuadraticViscousRateAndStateAndStribeckLagAsTheirClosedForms) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const LugreParams& l = p.lugre;
+  auto stribeck = [&](double speed) {
+    const double r = speed / l.vs_in_per_s;
+    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
+  };
+  const double cq = 0.12;
+  VelocityEffect q;
+  q.quadratic_viscous_kip_s2_per_in2 = cq;
+  p.effects.velocity = q;
+  for (double v : {0.5, 2.0, 5.0}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+    EXPECT_NEAR(f, stribeck(v) + (l.sigma2_kip_s_per_in + cq * v) * v, 1e-6 * f) << v;
+  }
+  const double a = 0.3, d = 0.1, vr = 1.0, v1 = 0.5, v2 = 3.0;
+  VelocityEffect rs;
+  rs.rate_slope = -a;
+  rs.direct_slope = a;
+  rs.reference_speed_in_per_s = vr;
+  rs.memory_in = d;
+  p.effects.velocity = rs;
+  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;  // g = φ Fc
+  // Stiffer bristle: it follows φ, which changes by ~a Fc per D of slip, within ~g/σ0 of slip.
+  p.lugre.sigma0_kip_per_in = 30000.0;
+  {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v1;
+    double f = 0.0;
+    for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);  // 2 in of slip at v1: steady
+    EXPECT_NEAR(f, l.fc_fwd_kip + l.sigma2_kip_s_per_in * v1, 1e-4 * f) << "velocity-neutral: φ = 1 when steady";
+    in.drum_vel_in_per_s = v2;
+    const double w1 = v1 + 0.01, w2 = v2 + 0.01;
+    double slip = 0.0, worst = 0.0, first_jump = 0.0;
+    for (int i = 0; i < 3000; ++i) {
+      f = m.step(in, 1e-4);
+      slip += v2 * 1e-4;
+      const double th = d / w2 + (d / w1 - d / w2) * std::exp(-slip * w2 / v2 / d);
+      const double expected = (1.0 + a * std::log(w2 / vr) - a * std::log(d / th / vr)) * l.fc_fwd_kip +
+                              l.sigma2_kip_s_per_in * v2;
+      if (slip > 0.01) worst = std::max(worst, std::abs(f - expected));
+      if (i == 100) first_jump = f - (l.fc_fwd_kip + l.sigma2_kip_s_per_in * v2);
+    }
+    EXPECT_LT(worst, 2e-3 * l.fc_fwd_kip);
+    EXPECT_GT(first_jump, 0.2 * a * std::log(w2 / w1) * l.fc_fwd_kip);  // the direct effect shows at once
+  }
+  p.lugre = synthetic_base().lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const double tau = 0.2, v = 0.5;
+  VelocityEffect lag;
+  lag.stribeck_lag_s = tau;
+  p.effects.velocity = lag;
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  double t = 0.0, worst = 0.0;
+  for (int i = 0; i < 8000; ++i) {
+    const double f = m.step(in, 1e-4);
+    t += 1e-4;
+    const double expected = stribeck(v * (1.0 - std::exp(-t / tau))) + p.lugre.sigma2_kip_s_per_in * v;
+    if (t > 0.05) worst = std::max(worst, std::abs(f - expected));  // after the bristle's own transient
+  }
+  EXPECT_LT(worst, 5e-3 * p.lugre.fs_fwd_kip);
+  // ... and without the lag the force is at its steady value long before.
+  EXPECT_GT(stribeck(v * (1.0 - std::exp(-0.05 / tau))) - stribeck(v), 0.05 * (p.lugre.fs_fwd_kip - p.lugre.fc_fwd_kip));
 }
 
 TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
