@@ -42,8 +42,9 @@ double BrfdModel::rate_factor(double speed) const {
   if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0)) return 1.0;
   const double now = speed + VelocityEffect::kSpeedFloorInPerS;
   const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
-  return std::max(0.2, 1.0 + ve->direct_slope * std::log(now / ve->reference_speed_in_per_s) +
-                           ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s));
+  const double direct = ve->direct_slope != 0.0 ? ve->direct_slope * std::log(now / ve->reference_speed_in_per_s) : 0.0;
+  const double state = ve->rate_slope != 0.0 ? ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s) : 0.0;
+  return std::max(0.2, 1.0 + direct + state);
 }
 
 double BrfdModel::engaged_share(double z) const {
