@@ -391,6 +391,16 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
                         format_significant(100.0 * w.signature_share, 3) + "% vs " + regime_list(effect_spec(other.effect).regimes) + " " +
                         format_significant(100.0 * other.signature_share, 3) + "%");
   }
+  // Named only when it explains most of what is missing (DiagnoseOptions::min_explained_share).
+  if (w.excess_share < o.min_explained_share) {
+    out.stop_reason = "something is missing that no library effect explains: the best candidate, " + w.effect +
+                      ", passes the gates but removes only " + format_significant(100.0 * w.excess_share, 3) +
+                      "% of the held-out residual above the noise floor (a name needs " +
+                      format_significant(100.0 * o.min_explained_share, 3) + "%): not named";
+    w.verdict = "passes, but explains only " + format_significant(100.0 * w.excess_share, 2) + "% of the excess (needs " +
+                format_significant(100.0 * o.min_explained_share, 2) + "%): not named";
+    return out;
+  }
   if (w.confidence < o.confidence) {
     out.stop_reason = "best candidate " + w.effect + " passes on the held-out parts but is chosen in only " +
                       format_significant(100.0 * w.confidence, 3) + "% of bootstrap resamples (needs " + format_significant(100.0 * o.confidence, 3) +

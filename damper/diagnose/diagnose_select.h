@@ -18,7 +18,8 @@
 ///       several records no record gets materially worse;
 ///   (3) >= signature_share of its held-out low-frequency gain sits in its own regimes
 ///       (EffectSpec::regimes);
-/// the winner is the passing candidate with the largest Σg. Its confidence is the share of
+/// the winner is the passing candidate with the largest Σg; it is named only when it removes at
+/// least min_explained_share of the excess (most of what is missing, not a part). Its confidence is the share of
 /// bootstrap resamples of the parts (with replacement) in which it is still the winner among the
 /// candidates passing (1), the per-record part of (2) and (3) on the resample (the consistency
 /// share of (2) is a requirement on all held-out parts, applied once, not re-drawn);

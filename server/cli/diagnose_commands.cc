@@ -69,6 +69,10 @@ void add_diagnose_commands(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--confidence", o.confidence, "... and be chosen in at least this share of bootstrap resamples")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--min-explained-share", o.min_explained_share,
+                  "the winner is named only when it removes at least this share of the held-out residual above the "
+                  "noise floor (else: something is missing that no library effect explains)")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--resamples", o.resamples, "bootstrap resamples per round")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--effect-evals", o.effect_evals, "LN_BOBYQA evaluations per start of an effect fit")
       ->check(CLI::Range(5, 100000))->capture_default_str();
