@@ -296,9 +296,11 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0}));
   c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3}));  // band-force feedback only
   c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0}));   // strong wrap: ~ capstan e^(±κd)
-  c.push_back(library_case("transition_shape", "weak", {2.5}));
-  c.push_back(library_case("transition_shape", "strong", {5.0}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5}));  // a rounder transition than LuGre
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0}));  // a rounder transition than LuGre
+  // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

@@ -226,7 +226,12 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   const double servo = f.servo != 0.0 ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band), 0.2, 3.0) : 1.0;
   const double y = band / (f.g * servo);  // force ratio
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
-  const double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
+  double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
+  if (ts && ts->breakaway_ratio > 0.0) {  // elasto-plastic: no slip below the breakaway ratio
+    const double beta = ts->breakaway_ratio, ay = std::abs(y);
+    shaped *= ay <= beta ? 0.0 : ay >= 1.0 ? 1.0 : 0.5 + 0.5 * std::sin(M_PI * (ay - 0.5 * (1.0 + beta)) / (1.0 - beta));
+  }
+  if (ts && ts->elastic_unloading != 0.0 && y * v < 0.0) shaped *= 1.0 - ts->elastic_unloading;  // sticks, unloads elastically
   double rate = v - std::abs(v) * shaped;
   const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
   if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > b->slack_in) rate *= b->release_ratio;
@@ -330,7 +335,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const double slack = e.backlash ? e.backlash->slack_in : 0.0;
   const double k = speed / f.g;  // |v| / g(v)
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
-  const bool shaped = e.transition_shape && e.transition_shape->exponent != 1.0;
+  const bool shaped = e.transition_shape && e.transition_shape->nonlinear();
   const bool soft = e.backlash && (e.backlash->retension_in > 0.0 || e.backlash->release_ratio != 1.0);
   if (shaped || soft || f.servo != 0.0) {
     // Nonlinear bristle law (Dahl exponent, the soft re-tensioning spring, the self-servo): RK4
@@ -339,7 +344,10 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     const double alpha = shaped ? e.transition_shape->exponent : 1.0;
     const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
     const double release = e.backlash ? e.backlash->release_ratio : 1.0;
-    const double slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
+    double slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
+    // The breakaway's half-sine rises with slope π/(2(1 − β)) in y.
+    if (shaped && e.transition_shape->breakaway_ratio > 0.0)
+      slope *= 1.0 + M_PI / (2.0 * (1.0 - e.transition_shape->breakaway_ratio));
     // Self-servo: g φ_s with φ_s at the step's start (it changes little over one step), twice.
     const double servo =
         f.servo != 0.0 ? 2.0 / std::clamp(1.0 - f.servo_share + f.servo * y0 * f.g, 0.2, 3.0) : 1.0;

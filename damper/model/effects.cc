@@ -97,8 +97,10 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
-    t.allow_only({"exponent"});
-    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0)};
+    t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio"});
+    e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
+                                               t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
+                                               t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9)};
   }
   return e;
 }
@@ -291,13 +293,20 @@ std::vector<EffectSpec> build_library() {
                                    p.band_force_share};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
-      "transition_shape", "shape of the stick-to-slip transition, sharper or smoother (Dahl exponent of the bristle law)",
-      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent (LuGre: exponent = 1)",
-      {{"exponent", 0.3, 12.0, 1.0, 3.0, true}}, &ModelEffects::transition_shape,
+      "transition_shape",
+      "shape of the stick-to-slip transition: sharper or smoother (Dahl exponent), an elastic range before "
+      "breakaway, elastic unloading after a reversal (elasto-plastic / Maxwell-slip pre-sliding)",
+      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent e(|y|) (1 - u [y v < 0]), e = 0 below breakaway_ratio, "
+      "rising as a half sine to 1 at |y| = 1 (LuGre: exponent = 1, u = 0, breakaway_ratio = 0)",
+      {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
+       {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
+       {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false}},
+      &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>(
-          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0]}; }),
-      std::function<std::vector<double>(const TransitionShapeEffect&)>(
-          [](const TransitionShapeEffect& a) { return std::vector<double>{a.exponent}; })));
+          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0], t[1], t[2]}; }),
+      std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
+        return std::vector<double>{a.exponent, a.elastic_unloading, a.breakaway_ratio};
+      })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
     for (EffectSpec& s : lib)

@@ -88,7 +88,14 @@
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation;
 ///      α < 1: the stiffness falls from the start of the stroke, a smoother, rounder transition)
-///    Steady sliding is unchanged (|y| = 1). Stepped by RK4 sub-steps (the ODE is no longer linear).
+///    and the pre-sliding of the elasto-plastic and Maxwell-slip models (Dupont et al. 2002, IEEE TAC
+///    47; Al-Bender et al. 2005, IEEE TAC 50): the slip term is multiplied by
+///      e(y) = 0 for |y| <= β, ½ + ½ sin(π (|y| − (1 + β)/2)/(1 − β)) for β < |y| < 1, 1 beyond
+///      (breakaway_ratio = β: below it the contact is purely elastic, F rises as N σ0 d)
+///    and by (1 − u) while the band unloads (y v < 0; elastic_unloading = u: u = 1, the contact
+///    sticks at a reversal and the force falls back along the elastic line N σ0, as each element of
+///    a Maxwell-slip model does; LuGre's own unloading slips, at twice the elastic rate from y = 1).
+///    Steady sliding is unchanged (|y| = 1, y v > 0). Stepped by RK4 sub-steps (the ODE is no longer linear).
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -161,7 +168,10 @@ struct SelfEnergizingEffect {
 
 /// Shape of the stick-to-slip transition (see file comment).
 struct TransitionShapeEffect {
-  double exponent = 1.0;  ///< α > 0 (1: LuGre; > 1 sharper, < 1 smoother transition)
+  double exponent = 1.0;           ///< α > 0 (1: LuGre; > 1 sharper, < 1 smoother transition)
+  double elastic_unloading = 0.0;  ///< u in [0, 1]: share of the slip suppressed while the band unloads
+  double breakaway_ratio = 0.0;    ///< β in [0, 0.9]: force ratio below which the contact is purely elastic
+  bool nonlinear() const { return exponent != 1.0 || elastic_unloading != 0.0 || breakaway_ratio != 0.0; }
 };
 
 /// The effects switched on in a model (all absent by default: the paper's model).

@@ -46,7 +46,7 @@ ModelEffects all_effects() {
   e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05, 0.1, 0.05, 0.1};
   e.pretension = PretensionEffect{0.8, 0.7};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5};
-  e.transition_shape = TransitionShapeEffect{3.0};
+  e.transition_shape = TransitionShapeEffect{3.0, 0.5, 0.3};
   return e;
 }
 
@@ -118,9 +118,10 @@ TEST(Effects, StepMatchesRk4OfTheBristleRate) {
   o.rate_hz = 256.0;
   // 1: exact pieces; 3 and 0.5: sharper and smoother transition (RK4 sub-steps); 1 with the
   // self-servo of self_energizing (RK4 sub-steps).
-  for (double alpha : {1.0, 3.0, 0.5, -1.0}) {
-    p.effects.transition_shape = TransitionShapeEffect{alpha > 0.0 ? alpha : 1.0};
-    p.effects.self_energizing->band_force_share = alpha > 0.0 ? 0.0 : 0.3;
+  // -2: elasto-plastic pre-sliding (breakaway ratio 0.5, elastic unloading 0.8; RK4 sub-steps).
+  for (double alpha : {1.0, 3.0, 0.5, -1.0, -2.0}) {
+    p.effects.transition_shape = alpha == -2.0 ? TransitionShapeEffect{1.0, 0.8, 0.5} : TransitionShapeEffect{alpha > 0.0 ? alpha : 1.0};
+    p.effects.self_energizing->band_force_share = alpha == -1.0 ? 0.3 : 0.0;
     BrfdModel exact(p), rk(p);
     const double dt = 1.0 / o.rate_hz;
     const int n = static_cast<int>(o.motion_s * o.rate_hz);
@@ -164,6 +165,55 @@ TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
   }
   EXPECT_NEAR(near_zero_travel, 2.0 * slack, 2.0 * v * dt);
   EXPECT_NEAR(m.step(in, dt), -p.lugre.fc_bwd_kip, 1e-6);
+}
+
+// Elasto-plastic / Maxwell-slip pre-sliding (transition_shape's breakaway_ratio β and
+// elastic_unloading u), with σ1 = σ2 = 0 and Fs = Fc (g = Fc): from rest the force rises on the
+// elastic line F = σ0 d until F = β Fc (LuGre: Fc (1 − e^(−σ0 d/Fc)), below it); after a reversal
+// from steady sliding with u = 1 the contact sticks and the force falls back along the elastic line,
+// F = Fc − σ0 s over the travel s < Fc/σ0 (LuGre: (Fc + Fc⁻) e^(−σ0 s/Fc⁻) − Fc⁻, Fc⁻ the backward
+// level); steady sliding stays Fc.
+TEST(Effects, ElastoPlasticPreSlidingRisesAndUnloadsOnTheElasticLine) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;
+  p.lugre.fs_bwd_kip = p.lugre.fc_bwd_kip;
+  const double fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip, s0 = p.lugre.sigma0_kip_per_in, beta = 0.5;
+  const double dt = 1e-5, v = 1.0;
+  for (const bool lugre : {false, true}) {
+    BrfdParams q = p;
+    if (!lugre) q.effects.transition_shape = TransitionShapeEffect{1.0, 1.0, beta};
+    BrfdModel m(q);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    const int to_check = static_cast<int>(std::round(0.9 * beta * fc / s0 / (v * dt)));  // F = 0.9 β Fc on the line
+    double f = 0.0;
+    for (int i = 1; i <= to_check; ++i) {
+      in.drum_disp_in = i * v * dt;
+      f = m.step(in, dt);
+    }
+    const double d = to_check * v * dt;
+    if (lugre) {
+      EXPECT_NEAR(f, fc * (1.0 - std::exp(-s0 * d / fc)), 1e-6);
+      EXPECT_LT(f, s0 * d - 0.02 * fc);  // the test tells the two apart
+    } else {
+      EXPECT_NEAR(f, s0 * d, 1e-9);
+    }
+    for (int i = 0; i < 200000; ++i) f = m.step(in, dt);  // 2 in of forward sliding
+    EXPECT_NEAR(f, fc, 1e-6) << (lugre ? "LuGre" : "pre-sliding") << ": steady sliding unchanged";
+    in.drum_vel_in_per_s = -v;
+    const int half = static_cast<int>(std::round(0.5 * fc / s0 / (v * dt)));
+    for (int i = 0; i < half; ++i) f = m.step(in, dt);
+    const double s = half * v * dt;
+    if (lugre)
+      EXPECT_NEAR(f, (fc + fb) * std::exp(-s0 * s / fb) - fb, 1e-6);  // g = Fc of the backward direction
+    else
+      EXPECT_NEAR(f, fc - s0 * s, 1e-9);
+    for (int i = 0; i < 200000; ++i) f = m.step(in, dt);
+    EXPECT_NEAR(f, -fb, 1e-6);
+  }
 }
 
 // The taut band releases r times faster than the lining loads: with σ1 = σ2 = 0 and Fs = Fc (g = Fc),
