@@ -77,11 +77,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
-    p.allow_only({"fs_share", "instant_share", "wear_per_kip_in"});
+    p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
     x.wear_per_kip_in = p.get_double_in("wear_per_kip_in", 0.0, -1.0, 1.0);
+    x.clamp_exponent = p.get_double_in("clamp_exponent", 1.0, 0.1, 10.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -256,20 +257,23 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc, Fs x (1 - wear W), dW/dt = |F v|",
+      "Fc, Fs x (1 - wear W), dW/dt = |F v|; clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
-       {"wear_per_kip_in", -0.003, 0.003, 0.0, 0.0005, false}},
+       {"wear_per_kip_in", -0.003, 0.003, 0.0, 0.0005, false},
+       {"clamp_exponent", 0.3, 3.0, 1.0, 0.67, true}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
         p.fs_share = t[0];
         p.instant_share = t[1];
         p.wear_per_kip_in = t[2];
+        p.clamp_exponent = t[3];
         return p;
       }),
-      std::function<std::vector<double>(const PretensionEffect&)>(
-          [](const PretensionEffect& p) { return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in}; })));
+      std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
+        return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent};
+      })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0",

@@ -72,6 +72,11 @@
 ///    friction work done (Archard 1953):  Fc, Fs × max(0.05, 1 − w W),  dW/dt = |F v|  (kip·in,
 ///    W(0) = 0; w < 0: bedding-in, friction rising). In steady sliding at speed v and friction
 ///    F = Fc (1 − w W) this gives F(t) = Fc exp(−w Fc v t).
+///    Clamping law (clamp_exponent = q, added 2026-11-26): friction grows with the normal force as
+///    a power, Fc = b N^q instead of Eq. (4)'s b N (the increment used everywhere above becomes
+///    ΔFc = b (N^q − 1)): q < 1 a saturating contact (elastic multi-asperity contact, F ∝ N^(2/3),
+///    Archard 1957; a lining that compacts), q > 1 a superlinear one (the band wraps tighter as it
+///    is pulled, capstan-like). Steady sliding at a held tension: F = b N^q, tested.
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
@@ -156,6 +161,7 @@ struct PretensionEffect {
   double fs_share = 0.0;       ///< β: share of the Eq. (4) tension change that Fs follows
   double instant_share = 0.0;  ///< λ: share of the tension change scaling the band force at once, 0..1
   double wear_per_kip_in = 0.0;  ///< w: relative pre-tension lost per kip·in of friction work (< 0: gained)
+  double clamp_exponent = 1.0;   ///< q: kinetic friction ∝ (tension ratio N)^q (1: Eq. 4's linear increment)
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

@@ -44,7 +44,7 @@ ModelEffects all_effects() {
   e.actuator_lag = ActuatorLagEffect{0.1, 0.2, 0.6};
   e.asymmetry = AsymmetryEffect{0.1, 0.3, 0.2, -0.3};
   e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05, 0.1, 0.05, 0.1};
-  e.pretension = PretensionEffect{0.8, 0.7};
+  e.pretension = PretensionEffect{0.8, 0.7, 0.0, 0.8};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5};
   e.transition_shape = TransitionShapeEffect{3.0, 0.5, 0.3};
   return e;
@@ -495,6 +495,39 @@ TEST(Effects, SelfServoAmplifiesATensionRaisedByTheActuatorsAsItsClosedForm) {
       if (dx == 0.0) {
         EXPECT_NEAR(f, b, 1e-6 * b);
       }
+    }
+  }
+}
+
+// Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
+// F = b N^q, N = Fc/b the tension ratio of Eq. (4) (q = 1: Eq. 4 itself; passive: b whatever q).
+TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
+  BrfdParams p = synthetic_base();
+  ASSERT_EQ(p.kind, DamperKind::semiactive);
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  for (double q : {0.6, 1.0, 1.8}) {
+    for (double dx : {0.0, -0.005, -0.01}) {  // the actuators retract: more band tension
+      p.effects.pretension = PretensionEffect{0.0, 0.0, 0.0, q};
+      BrfdModel m(p);
+      BrfdParams plain = p;
+      plain.effects = {};
+      const BrfdModel without(plain);
+      DamperInput in;
+      in.drum_vel_in_per_s = 4.0;
+      in.actuator1_in = p.semiactive.actuator1_initial_in + dx;
+      in.actuator2_in = p.semiactive.actuator2_initial_in + dx;
+      const double b = without.base_kinetic_friction_kip(in.drum_vel_in_per_s);
+      const double n = without.kinetic_friction_kip(in) / b;
+      if (dx < -0.008) {
+        ASSERT_GT(n, 1.3) << "the actuators raise the tension";
+      }
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += 4.0 * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      EXPECT_NEAR(f, b * std::pow(n, q), 1e-6 * b) << "q " << q << " dx " << dx;
     }
   }
 }
