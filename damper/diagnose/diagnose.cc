@@ -45,7 +45,8 @@ BrfdParams for_record(BrfdParams p, const BrfdTest& t) {
 
 // The base of a record for "before"/"after": identified on its passive window exactly as
 // `damper predict` does (identify), or `p` as is (model).
-BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const DiagnoseOptions& o, double* window_rmse) {
+BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const DiagnoseOptions& o, double* window_rmse,
+                       std::string* not_identified = nullptr) {
   BrfdParams b = for_record(p, r.test);
   if (o.base != BaseSource::identify) return b;
   IdentificationOptions io = o.base_identification;
@@ -53,6 +54,7 @@ BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const Diagn
   io.t1_s = passive_window_end_s(r, o);
   const IdentificationResult id = identify_lugre(r.test, b, io);
   if (window_rmse) *window_rmse = id.residual.rmse_kip;
+  if (not_identified && !id.identified) *not_identified = id.note;
   return id.params;
 }
 
@@ -77,8 +79,11 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
     r.seg = segment_record(r.test, o.segmentation);
     const double t_passive = passive_window_end_s(r, o);
     double window_rmse = 0.0;
-    const BrfdParams base = record_base(r, model, o, &window_rmse);
-    if (o.base == BaseSource::identify)
+    std::string not_identified;
+    const BrfdParams base = record_base(r, model, o, &window_rmse, &not_identified);
+    if (o.base == BaseSource::identify && !not_identified.empty())
+      log(r.test.name() + ": base LuGre from the model file (" + not_identified + ")");
+    else if (o.base == BaseSource::identify)
       log(r.test.name() + ": base LuGre identified on the passive window 0-" + format_significant(t_passive, 4) + " s (residual there " +
           format_significant(window_rmse, 4) + " kip RMSE)");
     double train_s = 0.0, held_s = 0.0;

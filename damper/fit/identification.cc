@@ -34,6 +34,20 @@ std::vector<double> pack(const LugreParams& g) {
 
 }  // namespace
 
+DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_t end) {
+  DrumExcursion e;
+  if (end <= begin) return e;
+  double lo = test.drum_disp_in[begin], hi = lo;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double d = test.drum_disp_in[i];
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+    e.forward_in = std::max(e.forward_in, d - lo);
+    e.backward_in = std::max(e.backward_in, hi - d);
+  }
+  return e;
+}
+
 IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
                                     const IdentificationOptions& opt) {
   const std::size_t begin = index_at_time(test, opt.t0_s);
@@ -49,6 +63,32 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
   if (peak_v < 0.05) {
     throw std::invalid_argument(test.path + ": the drum barely moves in the identification window "
                                 "(peak |v| < 0.05 in/s): nothing to identify");
+  }
+
+  // Does the window identify anything? Both directions must slide past the pre-sliding range.
+  const DrumExcursion ex = drum_excursion(test, begin, end);
+  const LugreParams& g0 = start.lugre;
+  const double need_fwd = opt.min_excursion_presliding * g0.fc_fwd_kip / g0.sigma0_kip_per_in;
+  const double need_bwd = opt.min_excursion_presliding * g0.fc_bwd_kip / g0.sigma0_kip_per_in;
+  if (ex.forward_in < need_fwd || ex.backward_in < need_bwd) {
+    IdentificationResult r;
+    r.params = start;
+    const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
+    std::vector<double> full(test.size(), 0.0);
+    std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
+    r.residual = force_error(test.force_kip, full, begin, end);
+    r.t0_s = test.time_s[begin];
+    r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+    r.algorithm = "none";
+    r.identified = false;
+    std::ostringstream o;
+    o << std::setprecision(3) << test.path << ": the window " << r.t0_s << "-" << r.t1_s
+      << " s does not identify the LuGre parameters: the drum's largest excursion there is " << ex.forward_in
+      << " in forward and " << ex.backward_in << " in backward, and sliding past the pre-sliding range needs "
+      << need_fwd << " and " << need_bwd << " in (" << opt.min_excursion_presliding
+      << " Fc/sigma0): the start parameters are kept";
+    r.note = o.str();
+    return r;
   }
 
   const LugreBounds& b = opt.bounds;
@@ -91,8 +131,12 @@ std::string describe(const IdentificationResult& r) {
   const LugreParams& g = r.params.lugre;
   std::ostringstream o;
   o << std::setprecision(5);
-  o << "identified on [" << r.t0_s << ", " << r.t1_s << ") s with " << r.algorithm << ", "
-    << r.evaluations << " evaluations\n"
+  if (!r.identified)
+    o << "NOT identified: " << r.note << "\n";
+  else
+    o << "identified on [" << r.t0_s << ", " << r.t1_s << ") s with " << r.algorithm << ", " << r.evaluations
+      << " evaluations\n";
+  o
     << "  sigma0 = " << g.sigma0_kip_per_in << " kip/in\n"
     << "  sigma1 = " << g.sigma1_kip_s_per_in << " kip s/in\n"
     << "  sigma2 = " << g.sigma2_kip_s_per_in << " kip s/in\n"

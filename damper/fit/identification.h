@@ -35,6 +35,13 @@ struct IdentificationOptions {
   int global_runs = 3;           ///< independent GN_CRS2_LM runs (seeds seed, seed+1, ...)
   int local_max_evals = 3000;    ///< LN_BOBYQA evaluations
   unsigned seed = 1;             ///< NLopt's random seed (reproducible fits)
+  /// A window identifies the LuGre parameters only if the drum slides past its pre-sliding range
+  /// in both directions: a net excursion of at least this many times Fc/σ0 (of the start
+  /// parameters, per direction) forward and backward. Otherwise the kinetic friction of a
+  /// direction, its static peak and v_s are not in the data (a search then ends at its bounds:
+  /// Fc 10 kip, Fs 30 kip, v_s 5 in/s on a blind record whose passive window barely moved
+  /// forward) and the start parameters are kept, with a note (IdentificationResult::identified).
+  double min_excursion_presliding = 3.0;
   ReplayOptions replay;
 };
 
@@ -45,11 +52,23 @@ struct IdentificationResult {
   double t0_s = 0.0, t1_s = 0.0;  ///< window actually used
   int evaluations = 0;
   std::string algorithm;          ///< e.g. "GN_CRS2_LM(4000) + LN_BOBYQA(3000)"
+  /// False when the window does not excite the parameters (IdentificationOptions::
+  /// min_excursion_presliding): `params` are the start's, `note` says why.
+  bool identified = true;
+  std::string note;
 };
+
+/// Largest net drum excursion forward and backward inside [begin, end) (in): the largest rise of
+/// the displacement above its running minimum, and fall below its running maximum.
+struct DrumExcursion {
+  double forward_in = 0.0, backward_in = 0.0;
+};
+DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_t end);
 
 /// Fits σ0, σ1, σ2, Fc and Fs per direction and v_s on [t0, t1) of `test`. The semi-active part
 /// of `start` is kept; inside a pre-actuation window the actuators sit at x'_1, x'_2 so Eq. (4)
-/// is b. Throws std::invalid_argument if the window holds fewer than 100 samples or no motion.
+/// is b. Throws std::invalid_argument if the window holds fewer than 100 samples or no motion;
+/// keeps the start parameters (identified = false) if the drum does not slide both ways in it.
 IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
                                     const IdentificationOptions& options);
 

@@ -58,6 +58,34 @@ TEST(Identification, RejectsAWindowWithoutData) {
   EXPECT_THROW(identify_lugre(t, truth, o), std::invalid_argument);
 }
 
+// A window in which the drum does not slide both ways past its pre-sliding range (3 Fc/σ0) does
+// not identify Fc, Fs and v_s of the missing direction: the start parameters are kept, with a note
+// (before: the search ended at its bounds, Fc 10 kip, Fs 30 kip, v_s 5 in/s, on such a window).
+TEST(Identification, KeepsTheStartParametersWhereTheDrumDoesNotSlideBothWays) {
+  BrfdParams truth;
+  truth.kind = DamperKind::passive_lugre;
+  truth.lugre = {18.0, 0.05, 0.4, 7.0, 4.0, 3.0, 1.6, 1.0};
+  const BrfdTest t = synthetic_test(truth, 6.0);
+  // drum_excursion: d = sin(πt) over 2 s (after the 1 s ramp: t in [2, 4) s) rises 1 in, falls 2 in.
+  const DrumExcursion ex = drum_excursion(t, 2 * 1024, 4 * 1024);
+  EXPECT_NEAR(ex.forward_in, 1.0, 1e-4);
+  EXPECT_NEAR(ex.backward_in, 2.0, 1e-4);
+  BrfdParams start;
+  start.kind = DamperKind::passive_lugre;
+  IdentificationOptions o;
+  o.t0_s = 0.0;
+  o.t1_s = 0.45;  // the ramped first quarter stroke: forward only
+  o.global_runs = 1;
+  const IdentificationResult r = identify_lugre(t, start, o);
+  std::cout << describe(r) << "\n";
+  EXPECT_FALSE(r.identified);
+  EXPECT_NE(r.note.find("does not identify the LuGre parameters"), std::string::npos) << r.note;
+  EXPECT_EQ(r.params.lugre.fc_fwd_kip, start.lugre.fc_fwd_kip);
+  EXPECT_EQ(r.params.lugre.sigma0_kip_per_in, start.lugre.sigma0_kip_per_in);
+  o.t1_s = 6.0;  // whole cycles both ways: identified
+  EXPECT_TRUE(identify_lugre(t, start, o).identified);
+}
+
 TEST(Identification, FitsTheMeasuredCharacterizationTest) {
   const std::string file = std::string(BRFD_SHARED_DIR) +
                            "/data/brfd/characterization/0.5Hz30lbtension1amplitude.json";
