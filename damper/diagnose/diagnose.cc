@@ -63,6 +63,7 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
                                          ModelState& before, const Log& log) {
   std::vector<DiagnoseRecord> recs;
   before.effects = model.effects;
+  if (o.base == BaseSource::identify) before.file_lugre = model.lugre;  // the fits' second start
   std::vector<std::string> paths;
   if (!o.measured.empty() || o.measured_tests.empty()) paths = expand_measured_paths(o.measured);
   for (std::size_t m = 0; m < paths.size() + o.measured_tests.size(); ++m) {

@@ -193,8 +193,11 @@ void bobyqa(EffectObjective& obj, std::vector<double> u, int max_evals) {
 
 }  // namespace
 
-ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& start, const FitSpace& space,
-                     const std::vector<std::vector<std::uint8_t>>& mask, const FitSettings& settings, int* evaluations) {
+namespace {
+
+// The fit procedure from one start (fit_model's file comment in diagnose_fit.h).
+ModelState fit_from(const std::vector<DiagnoseRecord>& recs, const ModelState& start, const FitSpace& space,
+                    const std::vector<std::vector<std::uint8_t>>& mask, const FitSettings& settings, int* evaluations) {
   ModelState state = start;
   int evals = 0;
   IdentificationOptions io;
@@ -245,6 +248,45 @@ ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& 
   }
   if (evaluations) *evaluations += evals;
   return state;
+}
+
+// Squared error over the fitting samples and every record's passive window (where its base is
+// identified): what the two starts of fit_model are compared on.
+double fit_and_passive_sse(const std::vector<DiagnoseRecord>& recs, const ModelState& state,
+                           const std::vector<std::vector<std::uint8_t>>& mask) {
+  double se = 0.0;
+  for (std::size_t k = 0; k < recs.size(); ++k) {
+    const std::vector<double> pred = simulate(state.params(k), recs[k].test);
+    const std::vector<double>& f = recs[k].test.force_kip;
+    for (std::size_t i = 0; i < f.size(); ++i)
+      if (i < recs[k].seg.passive_end || (k < mask.size() && i < mask[k].size() && mask[k][i]))
+        se += (pred[i] - f[i]) * (pred[i] - f[i]);
+  }
+  return std::isfinite(se) ? se : INFINITY;
+}
+
+bool same_lugre(const LugreParams& a, const LugreParams& b) {
+  return a.sigma0_kip_per_in == b.sigma0_kip_per_in && a.sigma1_kip_s_per_in == b.sigma1_kip_s_per_in &&
+         a.sigma2_kip_s_per_in == b.sigma2_kip_s_per_in && a.fs_fwd_kip == b.fs_fwd_kip && a.fs_bwd_kip == b.fs_bwd_kip &&
+         a.fc_fwd_kip == b.fc_fwd_kip && a.fc_bwd_kip == b.fc_bwd_kip && a.vs_in_per_s == b.vs_in_per_s;
+}
+
+}  // namespace
+
+ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& start, const FitSpace& space,
+                     const std::vector<std::vector<std::uint8_t>>& mask, const FitSettings& settings, int* evaluations) {
+  ModelState a = fit_from(recs, start, space, mask, settings, evaluations);
+  if (settings.base != BaseSource::identify || !start.file_lugre || settings.base_refit_evals <= 0) return a;
+  ModelState from_file = start;
+  bool differs = false;
+  for (BrfdParams& b : from_file.bases)
+    if (!same_lugre(b.lugre, *start.file_lugre)) {
+      b.lugre = *start.file_lugre;
+      differs = true;
+    }
+  if (!differs) return a;
+  ModelState b = fit_from(recs, from_file, space, mask, settings, evaluations);
+  return fit_and_passive_sse(recs, b, mask) < fit_and_passive_sse(recs, a, mask) ? b : a;
 }
 
 // LuGre parameters shared by all records, identified on their passive windows with the effects on
