@@ -447,14 +447,17 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
         DiagnoseOptions o;
         o.model_path = model_path;
         o.measured_tests = recs;
-        o.base = c.identify ? BaseSource::identify : BaseSource::model;
+        if (bo.base != "model" && bo.base != "identify")
+          throw std::invalid_argument("diagnose bench: base '" + bo.base + "' (model or identify)");
+        const bool identify = c.identify || bo.base == "identify";
+        o.base = identify ? BaseSource::identify : BaseSource::model;
         o.figures = false;
         o.max_effects = 3;
         o.seed = seed;
         o.effect_evals = bo.effect_evals;
         o.fit_rate_hz = bo.fit_rate_hz;
         if (bo.verbose) o.log = bo.log;
-        if (c.identify) {
+        if (identify) {
           o.base_identification.global_runs = 1;
           o.base_identification.global_max_evals = 1500;
           o.base_identification.local_max_evals = 500;

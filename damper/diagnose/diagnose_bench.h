@@ -59,6 +59,10 @@ struct BenchOptions {
   /// Drum motion of those records: "harmonic" (the paper's tests 1 and 4) or "earthquake" (two
   /// broadband records, EarthquakeProfile of damper/synthetic, phases from the trial's seed).
   std::string hidden_motion = "harmonic";
+  /// "model": diagnose from the exact base (--base model; the none/identify cases excepted), the
+  /// bench's default; "identify": every case as a user runs diagnose, each record's base LuGre
+  /// identified on its passive window (the effect present there is then partly absorbed).
+  std::string base = "model";
 };
 
 /// One trial's outcome.

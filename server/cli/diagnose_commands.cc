@@ -122,6 +122,10 @@ void add_diagnose_commands(CLI::App& app) {
                     "drum motion of the damper/synthetic records: harmonic (the paper's tests 1 and 4) or earthquake "
                     "(two broadband records per trial)")
       ->check(CLI::IsMember({"harmonic", "earthquake"}));
+  bench->add_option("--base", b->o.base,
+                    "model: diagnose from the exact base (the default); identify: every case as a user runs diagnose, "
+                    "each record's base identified on its passive window")
+      ->check(CLI::IsMember({"model", "identify"}))->capture_default_str();
   bench->add_flag("--verbose", b->o.verbose, "print each trial's diagnose report");
   bench->callback([b, cmd]() {
     damper::BenchOptions bo = b->o;
