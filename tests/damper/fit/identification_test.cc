@@ -58,7 +58,7 @@ TEST(Identification, RejectsAWindowWithoutData) {
   EXPECT_THROW(identify_lugre(t, truth, o), std::invalid_argument);
 }
 
-// A window in which the drum does not slide both ways past its pre-sliding range (3 Fc/σ0) does
+// A window in which the drum does not slide both ways past its pre-sliding range (2 Fc/σ0) does
 // not identify Fc, Fs and v_s of the missing direction: the start parameters are kept, with a note
 // (before: the search ended at its bounds, Fc 10 kip, Fs 30 kip, v_s 5 in/s, on such a window).
 TEST(Identification, KeepsTheStartParametersWhereTheDrumDoesNotSlideBothWays) {
