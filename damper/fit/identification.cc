@@ -32,6 +32,20 @@ std::vector<double> pack(const LugreParams& g) {
           std::log10(g.vs_in_per_s)};
 }
 
+// `params` with its residual over [begin, end) and the window's times (evaluations, algorithm unset).
+IdentificationResult result_on_window(const BrfdParams& params, const BrfdTest& test, std::size_t begin,
+                                      std::size_t end, const ReplayOptions& replay) {
+  IdentificationResult r;
+  r.params = params;
+  const std::vector<double> f = replay_force_kip(r.params, test, begin, end, replay);
+  std::vector<double> full(test.size(), 0.0);
+  std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
+  r.residual = force_error(test.force_kip, full, begin, end);
+  r.t0_s = test.time_s[begin];
+  r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+  return r;
+}
+
 }  // namespace
 
 DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_t end) {
@@ -71,14 +85,7 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
   const double need_fwd = opt.min_excursion_presliding * g0.fc_fwd_kip / g0.sigma0_kip_per_in;
   const double need_bwd = opt.min_excursion_presliding * g0.fc_bwd_kip / g0.sigma0_kip_per_in;
   if (ex.forward_in < need_fwd || ex.backward_in < need_bwd) {
-    IdentificationResult r;
-    r.params = start;
-    const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
-    std::vector<double> full(test.size(), 0.0);
-    std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
-    r.residual = force_error(test.force_kip, full, begin, end);
-    r.t0_s = test.time_s[begin];
-    r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+    IdentificationResult r = result_on_window(start, test, begin, end, opt.replay);
     r.algorithm = "none";
     r.identified = false;
     std::ostringstream o;
@@ -113,15 +120,9 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
       staged_search(rmse, pack(start.lugre), lo, hi,
                     {opt.global_max_evals, opt.global_runs, opt.local_max_evals, opt.seed, 1e-7});
 
-  IdentificationResult r;
-  r.params = start;
-  r.params.lugre = lugre_from_search_vector(found.x);
-  const std::vector<double> f = replay_force_kip(r.params, test, begin, end, opt.replay);
-  std::vector<double> full(test.size(), 0.0);
-  std::copy(f.begin(), f.end(), full.begin() + static_cast<long>(begin));
-  r.residual = force_error(test.force_kip, full, begin, end);
-  r.t0_s = test.time_s[begin];
-  r.t1_s = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+  BrfdParams fitted = start;
+  fitted.lugre = lugre_from_search_vector(found.x);
+  IdentificationResult r = result_on_window(fitted, test, begin, end, opt.replay);
   r.evaluations = found.evaluations;
   r.algorithm = found.algorithm;
   return r;
