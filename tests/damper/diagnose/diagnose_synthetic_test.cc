@@ -44,6 +44,18 @@ std::vector<BrfdTest> records_of(const BrfdParams& truth, double noise_kip, unsi
   return recs;
 }
 
+// The exact base of every record (the bench's base model, x'_k from the record), no effects.
+ModelState exact_bases(const std::vector<DiagnoseRecord>& recs) {
+  ModelState start;
+  for (const DiagnoseRecord& r : recs) {
+    BrfdParams b = bench_base_model();
+    b.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
+    b.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
+    start.bases.push_back(b);
+  }
+  return start;
+}
+
 std::string model_file(const std::string& name) {
   const std::string path = (std::filesystem::temp_directory_path() / ("diagnose_synth_" + name + ".yaml")).string();
   std::ofstream(path) << brfd_params_to_yaml(bench_base_model());
@@ -86,13 +98,7 @@ TEST(DiagnoseSelection, CandidatePinnedAtItsNullValueNeverWins) {
     for (EffectParameter& p : s.parameters) p.lo = p.hi = p.start = p.null_value;
     todo.push_back(&s);
   }
-  ModelState start;
-  for (const DiagnoseRecord& r : recs) {
-    BrfdParams b = bench_base_model();
-    b.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
-    b.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
-    start.bases.push_back(b);
-  }
+  const ModelState start = exact_bases(recs);
   for (BaseSource base : {BaseSource::model, BaseSource::identify}) {
     DiagnoseOptions o;
     o.base = base;
@@ -121,13 +127,7 @@ TEST(DiagnoseSelection, APartialSurrogateIsReportedNotNamed) {
   truth.effects.actuator_lag = ActuatorLagEffect{0.25, 0.0, 1.0};
   std::vector<DiagnoseRecord> recs;
   for (const BrfdTest& t : records_of(truth, 0.03, 11)) recs.push_back({t, segment_record(t)});
-  ModelState start;
-  for (const DiagnoseRecord& r : recs) {
-    BrfdParams b = bench_base_model();
-    b.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
-    b.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
-    start.bases.push_back(b);
-  }
+  const ModelState start = exact_bases(recs);
   const std::vector<const EffectSpec*> todo{&effect_spec("actuator_lag")};
   DiagnoseOptions o;
   o.base = BaseSource::model;

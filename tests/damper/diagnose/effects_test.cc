@@ -35,6 +35,18 @@ std::vector<double> run(const BrfdParams& p, const SyntheticOptions& o, int subs
   return f;
 }
 
+// The passive band with σ1 = σ2 = 0 and Fs = Fc (g = Fc, no Stribeck drop): the base of the
+// closed-form tests of the bristle law.
+BrfdParams coulomb_band() {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;
+  p.lugre.fs_bwd_kip = p.lugre.fc_bwd_kip;
+  return p;
+}
+
 ModelEffects all_effects() {
   ModelEffects e;
   e.backlash = BacklashEffect{0.04, 0.03, 1.0, 3.0};
@@ -143,12 +155,7 @@ TEST(Effects, StepMatchesRk4OfTheBristleRate) {
 }
 
 TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
-  p.lugre.sigma2_kip_s_per_in = 0.0;
-  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;
-  p.lugre.fs_bwd_kip = p.lugre.fc_bwd_kip;
+  BrfdParams p = coulomb_band();
   const double slack = 0.06;
   p.effects.backlash = BacklashEffect{slack};
   BrfdModel m(p);
@@ -174,12 +181,7 @@ TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
 // F = Fc − σ0 s over the travel s < Fc/σ0 (LuGre: (Fc + Fc⁻) e^(−σ0 s/Fc⁻) − Fc⁻, Fc⁻ the backward
 // level); steady sliding stays Fc.
 TEST(Effects, ElastoPlasticPreSlidingRisesAndUnloadsOnTheElasticLine) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
-  p.lugre.sigma2_kip_s_per_in = 0.0;
-  p.lugre.fs_fwd_kip = p.lugre.fc_fwd_kip;
-  p.lugre.fs_bwd_kip = p.lugre.fc_bwd_kip;
+  BrfdParams p = coulomb_band();
   const double fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip, s0 = p.lugre.sigma0_kip_per_in, beta = 0.5;
   const double dt = 1e-5, v = 1.0;
   for (const bool lugre : {false, true}) {
