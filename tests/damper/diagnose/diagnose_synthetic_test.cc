@@ -14,10 +14,12 @@
 #include "damper/diagnose/diagnose.h"
 #include "damper/diagnose/diagnose_bench.h"
 #include "damper/diagnose/diagnose_select.h"
+#include "damper/fit/identification.h"
 #include "damper/model/brfd_config.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -229,6 +231,55 @@ TEST(DiagnoseSelection, AnOffsetTheDrumStopsWithIsNotAResidualStaticForce) {
   EXPECT_LT(c.signature_share, o.signature_share);
   EXPECT_FALSE(c.passes);
   EXPECT_EQ(out.winner, -1);
+}
+
+// Identify mode's second start: a base identified on the passive window WITHOUT the hidden effect
+// absorbs part of it. Hidden elasto-plastic pre-sliding (in transition_shape's family); the fit
+// starts from bases identified without effects. With the model file's LuGre block as second start
+// (ModelState::file_lugre) the family comes back near the truth and the fitting error to about the
+// noise (0.0205 kip for σ 0.02; from the identified bases alone 0.28 kip, measured when written):
+// the test fails if fit_model ignores the second start.
+TEST(DiagnoseSelection, SecondStartFromTheModelFileRecoversAnEffectTheIdentifiedBaseAbsorbed) {
+  BrfdParams truth = bench_base_model();
+  truth.effects.transition_shape = TransitionShapeEffect{1.0, 1.0, 0.3};
+  const double noise = 0.02;
+  std::vector<DiagnoseRecord> recs;
+  for (const BrfdTest& t : records_of(truth, noise, 17)) recs.push_back({t, segment_record(t)});
+  ModelState identified = exact_bases(recs);
+  IdentificationOptions io;
+  io.global_runs = 1;
+  io.global_max_evals = 1500;
+  io.local_max_evals = 500;
+  for (std::size_t k = 0; k < recs.size(); ++k) {
+    io.t0_s = 0.0;
+    io.t1_s = recs[k].test.time_s[recs[k].seg.passive_end];
+    identified.bases[k] = identify_lugre(recs[k].test, identified.bases[k], io).params;
+  }
+  std::vector<std::vector<std::uint8_t>> mask;
+  for (const DiagnoseRecord& r : recs) mask.push_back(std::vector<std::uint8_t>(r.test.size(), 1));
+  FitSettings fs;
+  fs.base = BaseSource::identify;
+  const FitSpace space{{&effect_spec("transition_shape")}};
+  auto rms = [&](const ModelState& m) {
+    double se = 0.0, n = 0.0;
+    for (std::size_t k = 0; k < recs.size(); ++k) {
+      const std::vector<double> f = simulate(m.params(k), recs[k].test);
+      for (std::size_t i = 0; i < f.size(); ++i, n += 1.0) se += std::pow(f[i] - recs[k].test.force_kip[i], 2);
+    }
+    return std::sqrt(se / n);
+  };
+  const ModelState alone = fit_model(recs, identified, space, mask, fs);
+  ModelState with_file = identified;
+  with_file.file_lugre = bench_base_model().lugre;
+  const ModelState both = fit_model(recs, with_file, space, mask, fs);
+  const TransitionShapeEffect& t = *both.effects.transition_shape;
+  std::cout << "identified base only: RMS " << rms(alone) << " kip; with the second start: " << rms(both)
+            << " kip (exponent " << t.exponent << ", elastic_unloading " << t.elastic_unloading << ", breakaway "
+            << t.breakaway_ratio << "); noise " << noise << " kip\n";
+  EXPECT_LT(rms(both), 1.5 * noise);
+  EXPECT_LE(rms(both), rms(alone));
+  EXPECT_NEAR(t.elastic_unloading, 1.0, 0.15);
+  EXPECT_NEAR(t.breakaway_ratio, 0.3, 0.1);
 }
 
 TEST(DiagnoseSelection, GapNeverGrowsWhenAnEffectIsAdded) {
