@@ -291,6 +291,32 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
     }
   }
   s.actuators_moving = moving;
+  // Band re-loading after the force changes sign: the measured force (centred 0.02 s average)
+  // changes sign with a hysteresis of 10 % of its 95th-percentile magnitude; the crossing is the
+  // last sample of the old sign before the flip.
+  s.band_reloading.assign(n, 0);
+  if (!t.force_kip.empty()) {
+    const long half = std::max(1L, static_cast<long>(std::lround(0.01 / t.dt_s)));
+    std::vector<double> f(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const long a = std::max(0L, static_cast<long>(i) - half), b = std::min(static_cast<long>(n) - 1, static_cast<long>(i) + half);
+      double sum = 0.0;
+      for (long j = a; j <= b; ++j) sum += t.force_kip[static_cast<std::size_t>(j)];
+      f[i] = sum / static_cast<double>(b - a + 1);
+    }
+    const double h = 0.1 * percentile_abs(std::vector<double>(f.begin(), f.begin() + static_cast<long>(rest)), 0.95);
+    int sign = 0;
+    for (std::size_t i = 0; i < rest; ++i) {
+      const int now = f[i] > h ? 1 : f[i] < -h ? -1 : 0;
+      if (now == 0 || now == sign) continue;
+      if (sign != 0) {
+        std::size_t j = i;
+        while (j > 0 && f[j - 1] * sign <= 0.0) --j;  // back to the zero crossing
+        for (std::size_t k = j; k < rest && std::abs(d[k] - d[j]) < o.reversal_travel_in; ++k) s.band_reloading[k] = 1;
+      }
+      sign = now;
+    }
+  }
   std::size_t rev_k = 0;
   double rev_disp = d[0];  // the motion start counts as a reversal
   for (std::size_t i = 0; i < n; ++i) {

@@ -75,6 +75,12 @@ struct Segmentation {
   /// regime with the actuators left out). The drum and the actuators are two independent axes:
   /// an effect of the drum motion acts whether or not the actuators are displaced.
   std::vector<Regime> drum_regime;
+  /// Per sample: 1 while the band re-loads after its force has changed sign, i.e. from the zero
+  /// crossing of the measured force (with hysteresis) until the drum has travelled
+  /// reversal_travel_in beyond it. A slack band lets go where its force passes through zero, which
+  /// on this device comes Fc/σ0 ≈ 0.2-0.5 in of drum travel after the velocity reversal — beyond the
+  /// `reversal` regime; backlash's signature is counted here too.
+  std::vector<std::uint8_t> band_reloading;
   /// Contiguous spans [begin, end) with their split label, in order (for reports/figures).
   struct Span {
     std::size_t begin, end;

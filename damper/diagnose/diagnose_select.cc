@@ -110,7 +110,8 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       // the actuators are displaced too).
       const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
       const Regime drum = r.seg.drum_regime.empty() ? g : r.seg.drum_regime[i];
-      const bool mine = moving || has(to_string(drum).c_str());
+      const bool reloading = !r.seg.band_reloading.empty() && r.seg.band_reloading[i] && has("band_reloading");
+      const bool mine = moving || reloading || has(to_string(drum).c_str());
       (mine ? own : other) += l0[i] * l0[i] - l1[i] * l1[i];
     }
   }
@@ -427,6 +428,7 @@ std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c) {
     auto unit = [&](double x) {
       return p.log_scale ? (std::log(x) - std::log(p.lo)) / (std::log(p.hi) - std::log(p.lo)) : (x - p.lo) / (p.hi - p.lo);
     };
+    if (p.share) continue;  // both ends of a share are physical limits
     const double u = unit(c.theta[j]);
     const double tol = 1e-3;
     const bool at_lo = u <= tol && p.null_value != p.lo;

@@ -31,6 +31,7 @@ void BrfdModel::reset() {
   resp2_in_ = lag2_in_;
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
+  held_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
@@ -212,12 +213,13 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
     f.relax = std::exp(-q * q) / e.residual_static->time_constant_s;
     if (f.relax > 0.0) {
-      // S(z_r) N_λ = ±ρ Fc of the loaded direction.
-      const double rho = e.residual_static->ratio;
+      // z_r = (1 − m) z_h + m z_o, S(z_o) N_λ = ±ρ Fc of the loaded direction + f_o.
+      const ResidualStaticEffect& rs = *e.residual_static;
       const double fc_pos = forward ? l.fc : levels(in, true).fc;
       const double fc_neg = forward ? levels(in, false).fc : l.fc;
-      f.target_pos = bristle_for_force(rho * fc_pos / f.tension);
-      f.target_neg = bristle_for_force(-rho * fc_neg / f.tension);
+      const double m = rs.relaxed_share;
+      f.target_pos = (1.0 - m) * held_z_in_ + m * bristle_for_force((rs.ratio * fc_pos + rs.offset_kip) / f.tension);
+      f.target_neg = (1.0 - m) * held_z_in_ + m * bristle_for_force((-rs.ratio * fc_neg + rs.offset_kip) / f.tension);
     }
   }
   return f;
@@ -250,8 +252,12 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   const double viscous =
       sigma2 + (ve ? ve->added_viscous_kip_s_per_in + ve->quadratic_viscous_kip_s2_per_in2 * std::abs(v) : 0.0);
-  return f.tension * spring_force_kip(z) +
-         engaged_share(z) * (p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) + viscous * v);
+  // Backlash: the bristle damping acts only on the engaged band; the viscous force keeps the share
+  // slack_viscous_share of itself while the band is slack (effects.h).
+  const double engaged = engaged_share(z);
+  const double slack_viscous = params_.effects.backlash ? params_.effects.backlash->slack_viscous_share : 0.0;
+  return f.tension * spring_force_kip(z) + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
+         (engaged + (1.0 - engaged) * slack_viscous) * viscous * v;
 }
 
 double BrfdModel::bristle_rate(double z_in, const DamperInput& in) const {
@@ -317,8 +323,13 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   }
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
-  if (e.residual_static)
+  if (e.residual_static) {
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);
+    // z_h follows z while the drum moves and holds the state it stopped with: frozen once the rest
+    // weight w = exp(−(s̃/v_rest)²) reaches 1/2 (a soft gate would let z_h creep after z at rest).
+    const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
+    if (std::exp(-q * q) < 0.5) held_z_in_ = z_in_;
+  }
   if (e.velocity && e.velocity->stribeck_lag_s > 0.0)  // lagged speed of the Stribeck term: exact
     stribeck_speed_ = speed + (stribeck_speed_ - speed) * std::exp(-dt_s / e.velocity->stribeck_lag_s);
   if (e.velocity) {

@@ -118,7 +118,7 @@ class BrfdModel final : public DamperModel {
   double initial_bristle_for_force(double f_kip) const;
 
   double bristle_in() const { return z_in_; }
-  void set_bristle_in(double z_in) { z_in_ = z_in; }
+  void set_bristle_in(double z_in) { z_in_ = held_z_in_ = z_in; }
   /// z = 0 and the effect states back to their initial values.
   void reset() override;
 
@@ -167,6 +167,7 @@ class BrfdModel final : public DamperModel {
   double resp1_rate_ = 0.0, resp2_rate_ = 0.0;  ///< dy_k/dt, in/s
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
+  double held_z_in_ = 0.0;                ///< z_h of residual_static: z when the drum last moved, in
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in

@@ -23,20 +23,23 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   ModelEffects e;
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
-    b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio"});
+    b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
     x.stiffness_ratio = b.get_double_in("stiffness_ratio", 1.0, 0.01, 100.0);
     x.release_ratio = b.get_double_in("release_ratio", 1.0, 1.0, 1000.0);
+    x.slack_viscous_share = b.get_double_in("slack_viscous_share", 0.0, 0.0, 1.0);
     e.backlash = x;
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
+    x.relaxed_share = r.get_double_in("relaxed_share", 1.0, 0.0, 1.0);
+    x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
     e.residual_static = x;
   }
   if (s.has("actuator_lag")) {
@@ -155,12 +158,13 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<BacklashEffect> ModelEffects::*, BacklashEffect>(
       "backlash", "band slack after reversal: fast release, force near zero over a drum travel 2*slack, gradual re-tension",
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
-      "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) (sigma1 "
-      "dz/dt + sigma2 v), e = engaged share",
+      "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
+      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
-       {"release_ratio", 1.0, 30.0, 1.0, 4.0, true}},
+       {"release_ratio", 1.0, 30.0, 1.0, 4.0, true},
+       {"slack_viscous_share", 0.0, 1.0, 0.0, 0.5, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -168,24 +172,33 @@ std::vector<EffectSpec> build_library() {
         b.retension_in = t[1];
         b.stiffness_ratio = t[2];
         b.release_ratio = t[3];
+        b.slack_viscous_share = t[4];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
-        return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio};
+        return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
+                                   b.slack_viscous_share};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
-      "residual_static", "residual static force after motion stops: at rest the force settles to ratio*Fc",
-      "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.2 s), S(z_r) = sign(z) ratio Fc",
-      {{"ratio", 0.0, 1.5, 1.0, 0.5, false}, {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true}},
+      "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
+      "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), z_r = (1 - m) z_held + m z_o, "
+      "S(z_o) = sign(z) ratio Fc + offset",
+      {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
+       {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
+       {"relaxed_share", 0.0, 1.0, 0.0, 1.0, false, true},
+       {"offset_kip", -3.0, 3.0, 0.0, 0.0, false}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
         r.ratio = t[0];
         r.time_constant_s = t[1];
+        r.relaxed_share = t[2];
+        r.offset_kip = t[3];
         return r;
       }),
-      std::function<std::vector<double>(const ResidualStaticEffect&)>(
-          [](const ResidualStaticEffect& r) { return std::vector<double>{r.ratio, r.time_constant_s}; })));
+      std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
+        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip};
+      })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (first- and second-order response)",
       "Eq. (4) with y_k: dx~_k/dt = (x_k - x~_k)/tau_a, y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
@@ -319,7 +332,7 @@ std::vector<EffectSpec> build_library() {
         s.confusable = std::move(confusable);
       }
   };
-  sig("backlash", {"reversal"}, {"residual_static", "transition_shape"});
+  sig("backlash", {"reversal", "band_reloading"}, {"residual_static", "transition_shape"});
   sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});

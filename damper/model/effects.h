@@ -19,14 +19,30 @@
 ///    over a drum travel r times shorter than the friction interface takes it up (a stiff band in
 ///    series with the compliant lining: release is the band's, re-loading the lining's).
 ///    e(z) = min(max(|z| − δ, 0)/ε, 1) (a step at |z| = δ for ε = 0; e ≡ 1 for δ = ε = 0): while
-///    the band is slack the lining does not slide, so its damping and viscous force vanish too.
+///    the band is slack the lining does not slide, so its bristle damping σ1 vanishes; the viscous
+///    force is kept in the share e + (1 − e) c (slack_viscous_share = c, 0..1): c = 0 the lining
+///    lifts off the drum with the tension, c = 1 it stays in contact and only the band tension is
+///    lost (the slack sits in the band or its linkage), so the lubricant film still shears:
+///      F = S(z) + e σ1 dz/dt + (e + (1 − e) c) σ2 v.
+///    (c added 2026-11-26: two outside authors' dead-zone gaps kept all or a tenth of σ2 v in the
+///    gap, and with c = 0 their true gap reproduced only a quarter of the record's residual.)
 ///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then its
 ///    stiffness rises linearly over a further ε of band stretch (ε = 0: the plain dead zone).
-///  - residual_static (ratio = ρ, time_constant_s = τ_r): residual static force after motion
-///    stops. When the drum has been at rest (low-passed speed s̃ below v_rest) the band force
-///    settles towards ρ times the kinetic friction of the loaded direction:
-///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),  S(z_r) = sign(z) ρ Fc
+///  - residual_static (relaxed_share = m, ratio = ρ, offset_kip = f_o, time_constant_s = τ_r):
+///    what the band force does while the drum is at rest. When the drum has been at rest
+///    (low-passed speed s̃ below v_rest) the band force settles from the force it held when it
+///    stopped, S(z_h), towards a rest level: a share m of the way to ρ times the kinetic friction
+///    of the loaded direction plus a set level f_o (m = 1, f_o = 0: the residual static force
+///    ρ Fc; ρ = 0: the held force relaxes by the share m (stress relaxation of the lined band,
+///    standard linear solid), towards f_o with it (the band recovers towards its pre-tension
+///    imbalance)):
+///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),
+///      z_r = (1 − m) z_h + m z_o,  S(z_o) = sign(z) ρ Fc + f_o,
+///      z_h = z while the drum moves (w < 1/2), held once it rests (w ≥ 1/2);
 ///      ds̃/dt = (|v| − s̃) / τ_s,  τ_s = 0.05 s, v_rest = 0.05 in/s (fixed); s̃(0) = 1000 in/s.
+///    (m and f_o added 2026-11-26: outside authors' relaxations of the held force and recoveries
+///    towards a set level were outside the old family, whose rest level was ρ Fc whatever force the
+///    drum stopped with; m = 1, f_o = 0, the config default, is that family.)
 ///  - actuator_lag (time_constant_s = τ_a, natural_period_s = T, damping_ratio = ζ): the
 ///    kinetic friction follows the actuator motion through a first-order lag and a second-order
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
@@ -122,11 +138,14 @@ struct BacklashEffect {
   double retension_in = 0.0;  ///< ε: band stretch over which the stiffness re-grows after the slack, in
   double stiffness_ratio = 1.0;  ///< k: band stiffness / σ0 (> 0)
   double release_ratio = 1.0;    ///< r >= 1: how much faster the loaded band releases than it loads
+  double slack_viscous_share = 0.0;  ///< c: share of the viscous force σ2 v kept while the band is slack, 0..1
 };
 /// Residual static force after motion stops (see file comment).
 struct ResidualStaticEffect {
   double ratio = 1.0;            ///< ρ: force at rest / kinetic friction of the loaded direction
   double time_constant_s = 1.0;  ///< τ_r: settling time at rest, s (> 0)
+  double relaxed_share = 1.0;    ///< m: share of the way from the held force to the rest level, 0..1
+  double offset_kip = 0.0;       ///< f_o: set level added to the rest level, kip
   static constexpr double kRestSpeedInPerS = 0.05;  ///< v_rest
   static constexpr double kSpeedFilterS = 0.05;     ///< τ_s of the low-passed speed s̃
 };
@@ -212,6 +231,9 @@ struct EffectParameter {
   double null_value;  ///< the value at which the effect vanishes (with the others at theirs)
   double start;       ///< a starting point for the optimizer besides the null value
   bool log_scale;     ///< search log10 of the value (lo > 0)
+  /// A share in [lo, hi] = [0, 1] whose both ends are physical limits (none of the effect, all of
+  /// it), not search limits: a fit ending there is not "at an outer bound".
+  bool share = false;
 };
 
 /// One candidate effect of the library.

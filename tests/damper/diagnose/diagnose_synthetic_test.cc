@@ -163,12 +163,12 @@ TEST(DiagnoseSelection, ParametersAtOuterSearchBoundsAreFlaggedNotNullSideOnes) 
   EXPECT_EQ(flagged[0], "drum_abs_per_in=1.2 (upper bound)");
   EXPECT_EQ(flagged[1], "abs_exponent=0.5 (lower bound)");
   c.effect = "backlash";
-  c.theta = {0.0, 0.02, 1.0, 1.0};
+  c.theta = {0.0, 0.02, 1.0, 1.0, 1.0};  // the whole viscous force in the slack: a share's physical end
   EXPECT_TRUE(parameters_at_outer_bounds(c).empty());
-  c.theta = {0.25, 0.02, 10.0, 1.0};  // slack and stiffness ratio at their upper bounds
+  c.theta = {0.25, 0.02, 10.0, 1.0, 0.0};  // slack and stiffness ratio at their upper bounds
   EXPECT_EQ(parameters_at_outer_bounds(c).size(), 2u);
   c.effect = "residual_static";
-  c.theta = {0.5, 0.02};  // relaxation at the fastest the library allows (null: 100 s)
+  c.theta = {0.5, 0.02, 1.0, 0.0};  // relaxation at the fastest the library allows (null: 100 s)
   ASSERT_EQ(parameters_at_outer_bounds(c).size(), 1u);
   EXPECT_EQ(parameters_at_outer_bounds(c)[0], "time_constant_s=0.02 (lower bound)");
 }

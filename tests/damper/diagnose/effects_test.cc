@@ -174,6 +174,71 @@ TEST(Effects, BacklashHoldsTheForceNearZeroOverTwiceTheSlack) {
   EXPECT_NEAR(m.step(in, dt), -p.lugre.fc_bwd_kip, 1e-6);
 }
 
+// The viscous force while the band is slack (backlash's slack_viscous_share c): with σ1 = 0 and a
+// viscous σ2, the force over the 2δ of slack after a reversal is exactly c σ2 v (the band carries
+// nothing, the lining's film still shears: c = 1; the lining lifts off: c = 0), and steady sliding
+// is Fc + σ2 v either way.
+TEST(Effects, BacklashKeepsItsShareOfTheViscousForceInTheSlack) {
+  BrfdParams p = coulomb_band();
+  p.lugre.sigma2_kip_s_per_in = 0.5;
+  const double slack = 0.06, dt = 1e-4, v = 1.0;
+  for (const double share : {0.0, 0.3, 1.0}) {
+    p.effects.backlash = BacklashEffect{slack, 0.0, 1.0, 1.0, share};
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    for (int i = 0; i < 20000; ++i) m.step(in, dt);
+    EXPECT_NEAR(m.step(in, dt), p.lugre.fc_fwd_kip + 0.5 * v, 1e-6);
+    in.drum_vel_in_per_s = -v;
+    double slack_travel = 0.0, worst = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+      const double f = m.step(in, dt);
+      if (std::abs(f + share * 0.5 * v) < 1e-9) {
+        slack_travel += v * dt;
+        worst = std::max(worst, std::abs(f + share * 0.5 * v));
+      }
+    }
+    EXPECT_NEAR(slack_travel, 2.0 * slack, 3.0 * v * dt) << "share " << share;
+    EXPECT_LT(worst, 1e-9) << "share " << share;
+    EXPECT_NEAR(m.step(in, dt), -p.lugre.fc_bwd_kip - 0.5 * v, 1e-6) << "share " << share;
+  }
+}
+
+// residual_static at rest: the force held when the drum stops, F_h, settles to
+// (1 − m) F_h + m (sign ρ Fc + f_o) with the time constant τ_r, and stays there (no creep of the
+// held state at rest); a second stop from the other direction starts from its own held force.
+// F_h is the force when the rest weight w = exp(−(s̃/v_rest)²) reaches 1/2, s̃ = v e^(−t/τ_s):
+// t* = τ_s ln(v / (v_rest √ln 2)).
+TEST(Effects, RestSettlesFromTheHeldForceTowardsItsRestLevel) {
+  BrfdParams p = coulomb_band();
+  const double dt = 1e-3, v = 1.0, m = 0.4, rho = 0.5, offset = 0.3, tau = 0.2;
+  p.effects.residual_static = ResidualStaticEffect{};
+  p.effects.residual_static->ratio = rho;
+  p.effects.residual_static->time_constant_s = tau;
+  p.effects.residual_static->relaxed_share = m;
+  p.effects.residual_static->offset_kip = offset;
+  const double t_freeze = ResidualStaticEffect::kSpeedFilterS *
+                          std::log(v / (ResidualStaticEffect::kRestSpeedInPerS * std::sqrt(std::log(2.0))));
+  BrfdModel model(p);
+  DamperInput in;
+  for (const double dir : {1.0, -1.0}) {
+    const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+    in.drum_vel_in_per_s = dir * v;
+    for (int i = 0; i < 3000; ++i) model.step(in, dt);  // 3 in of sliding: steady
+    EXPECT_NEAR(model.step(in, dt), dir * fc, 1e-6);
+    in.drum_vel_in_per_s = 0.0;
+    double held = 0.0, f = 0.0, f_at_3s = 0.0;
+    for (int i = 1; i <= 6000; ++i) {
+      f = model.step(in, dt);
+      if (i == static_cast<int>(std::ceil(t_freeze / dt))) held = f;
+      if (i == 3000) f_at_3s = f;
+    }
+    EXPECT_NEAR(held, dir * fc, 0.1 * fc) << "dir " << dir;  // little relaxation before the freeze
+    EXPECT_NEAR(f, (1.0 - m) * held + m * (dir * rho * fc + offset), 2e-3 * fc) << "dir " << dir;
+    EXPECT_NEAR(f, f_at_3s, 1e-6) << "dir " << dir;  // settled: the held state does not creep
+  }
+}
+
 // Elasto-plastic / Maxwell-slip pre-sliding (transition_shape's breakaway_ratio β and
 // elastic_unloading u), with σ1 = σ2 = 0 and Fs = Fc (g = Fc): from rest the force rises on the
 // elastic line F = σ0 d until F = β Fc (LuGre: Fc (1 − e^(−σ0 d/Fc)), below it); after a reversal
