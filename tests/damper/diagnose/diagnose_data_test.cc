@@ -75,6 +75,41 @@ TEST(DiagnoseData, SplitAndRegimesFollowTheDrive) {
   EXPECT_GT(sliding_under_actuators * dt, 0.5);
 }
 
+// The band re-loading mask: a triangle wave of the drum (±1 in at 1 in/s, reversals every 2 s)
+// and a force that, after each reversal, stays at its old sign for 0.4 in of travel and then
+// changes sign linearly (a band that unloads late, as this device's bands do: Fc/σ0 ≈ 0.2-0.5 in).
+// The mask must hold exactly from the force's zero crossing until the drum has travelled
+// reversal_travel_in (0.25 in) beyond it, and nowhere else.
+TEST(DiagnoseData, BandReloadingStartsWhereTheForceChangesSign) {
+  BrfdTest t;
+  t.dt_s = 1.0 / 1000.0;
+  const int n = 8001;  // 8 s: reversals at 1, 3, 5, 7 s
+  for (int i = 0; i < n; ++i) {
+    const double time = i * t.dt_s;
+    const double phase = std::fmod(time + 1.0, 4.0);  // 0..4 s: up 0..2, down 2..4
+    const double d = phase < 2.0 ? -1.0 + phase : 3.0 - phase;
+    const double v = phase < 2.0 ? 1.0 : -1.0;
+    const double since = std::fmod(time - 1.0 + 4.0, 2.0);  // travel since the last reversal (in)
+    const double sign = v;                                 // the new direction of sliding
+    const double f = time < 1.0 ? 2.0 : (since < 0.4 ? -sign * 2.0 * (1.0 - since / 0.4) : sign * 2.0 * std::min(1.0, (since - 0.4) / 0.2));
+    t.time_s.push_back(time);
+    t.drum_disp_in.push_back(d);
+    t.drum_vel_in_per_s.push_back(v);
+    t.force_kip.push_back(f);
+  }
+  const Segmentation s = segment_record(t);
+  ASSERT_EQ(s.band_reloading.size(), t.size());
+  for (int i = 0; i < n; ++i) {
+    const double time = i * t.dt_s;
+    if (time < 1.2 || time > 7.9) continue;  // the first stroke and the ends
+    const double since = std::fmod(time - 1.0 + 4.0, 2.0);
+    const double after_crossing = since - 0.4;  // drum travel beyond the zero crossing, in
+    if (std::abs(after_crossing) < 0.02 || std::abs(after_crossing - 0.25) < 0.02) continue;  // the edges (0.01 s average)
+    const bool expected = after_crossing > 0.0 && after_crossing < 0.25;
+    EXPECT_EQ(s.band_reloading[i] != 0, expected) << "t = " << time << " s, " << after_crossing << " in after the crossing";
+  }
+}
+
 TEST(DiagnoseData, LocalizeAttributesEnergyToRegimesAndChatter) {
   const BrfdTest t = make_record(synthetic_base());
   const Segmentation s = segment_record(t);
