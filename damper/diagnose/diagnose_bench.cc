@@ -287,26 +287,30 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5}));  // band stiffness by direction of motion
   c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0}));
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
   c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15}));
-  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0}));
-  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0}));
-  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6}));  // a saturating contact, Fc = b N^0.6
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0}));
-  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3}));  // band-force feedback only
-  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0}));   // strong wrap: ~ capstan e^(±κd)
-  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0}));
-  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0}));  // a rounder transition than LuGre
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0}));
+  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0}));  // a saturating contact, Fc = b N^0.6
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0}));  // band-force feedback only
+  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0}));   // strong wrap: ~ capstan e^(±κd)
+  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6}));  // band-stretch spring in parallel
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0}));  // a rounder transition than LuGre
   // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
-  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4}));
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0}));
+  // Dahl's own exponent: dF/dx = σ0 |1 − F/g sgn v|^2.5 sgn(·), a slow rounded approach to sliding.
+  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

@@ -119,8 +119,12 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     // Fs follows a share of the Eq. (4) tension change; a share of it scales the band force at once.
     fs *= std::max(0.05, 1.0 + e.pretension->fs_share * dfc / b);
     tension = std::max(0.05, 1.0 + e.pretension->instant_share * dfc / b);
-    if (e.pretension->wear_per_kip_in != 0.0)
-      factor *= std::max(0.05, 1.0 - e.pretension->wear_per_kip_in * friction_work_kip_in_);
+    if (e.pretension->wear_per_kip_in != 0.0) {
+      // Linear in the friction work W, or saturating over W0: w W0 (1 − e^(−W/W0)) (effects.h).
+      const double w0 = e.pretension->wear_saturation_kip_in;
+      const double worn = w0 > 0.0 ? -w0 * std::expm1(-friction_work_kip_in_ / w0) : friction_work_kip_in_;
+      factor *= std::max(0.05, 1.0 - e.pretension->wear_per_kip_in * worn);
+    }
   }
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
@@ -205,6 +209,8 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   f.tension = l.tension;
+  if (e.self_energizing) f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * in.drum_disp_in;
+  if (e.asymmetry) f.motion = forward ? 1.0 + e.asymmetry->motion_stiffness : 1.0 - e.asymmetry->motion_stiffness;
   if (e.self_energizing && e.self_energizing->band_force_share != 0.0) {
     f.servo_share = e.self_energizing->band_force_share;
     f.servo = f.servo_share / std::max(l.passive, 1e-6);
@@ -238,8 +244,13 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   }
   if (ts && ts->elastic_unloading != 0.0 && y * v < 0.0) shaped *= 1.0 - ts->elastic_unloading;  // sticks, unloads elastically
   double rate = v - std::abs(v) * shaped;
+  if (ts && ts->dahl_exponent != 1.0 && v != 0.0) {  // Dahl: v sign(u) |u|^n, u = 1 − sign(v) shaped
+    const double u = rate / v;
+    rate = v * std::copysign(std::pow(std::abs(u), ts->dahl_exponent), u);
+  }
   const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
   if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > b->slack_in) rate *= b->release_ratio;
+  rate *= f.motion;  // asymmetry: the band stiffness by the direction of motion
   if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
   return rate;
 }
@@ -257,7 +268,7 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const double engaged = engaged_share(z);
   const double slack_viscous = params_.effects.backlash ? params_.effects.backlash->slack_viscous_share : 0.0;
   return f.tension * spring_force_kip(z) + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
-         (engaged + (1.0 - engaged) * slack_viscous) * viscous * v;
+         (engaged + (1.0 - engaged) * slack_viscous) * viscous * v + f.band_spring_kip;
 }
 
 double BrfdModel::bristle_rate(double z_in, const DamperInput& in) const {
@@ -362,10 +373,13 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     // The breakaway's half-sine rises with slope π/(2(1 − β)) in y.
     if (shaped && e.transition_shape->breakaway_ratio > 0.0)
       slope *= 1.0 + M_PI / (2.0 * (1.0 - e.transition_shape->breakaway_ratio));
+    // Dahl's n: d|u|^n/du = n |u|^(n−1), u in [0, 2]; bounded with |u| >= 0.05 for n < 1.
+    const double dahl = shaped ? e.transition_shape->dahl_exponent : 1.0;
+    if (dahl != 1.0) slope *= dahl >= 1.0 ? dahl * std::pow(2.0, dahl - 1.0) : dahl * std::pow(0.05, dahl - 1.0);
     // Self-servo: g φ_s with φ_s at the step's start (it changes little over one step), twice.
     const double servo =
         f.servo != 0.0 ? 2.0 / std::clamp(1.0 - f.servo_share + f.servo * y0 * f.g, 0.2, 3.0) : 1.0;
-    const double stiff = k * std::max(sp, sn) * slope * servo * 1.5 * release + relax;
+    const double stiff = k * std::max(sp, sn) * slope * servo * 1.5 * release * f.motion + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
     const double h = dt_s / n;
     double z = z_in_;
@@ -386,13 +400,15 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   double z = z_in_;
   double t_left = dt_s;
   for (int segment = 0; segment < 8 && t_left > 0.0; ++segment) {
-    double a = relax, c = v, lo = -inf, hi = inf;
+    // The drum-driven part of the rate (× asymmetry's motion factor) and the rest relaxation.
+    double a_drum = 0.0, c_drum = v, target = 0.0, lo = -inf, hi = inf;
     switch (piece) {
-      case 0: a += k * sn; c += -k * sn * slack + relax * target_neg; hi = -slack; break;
-      case 1: c += relax * target_neg; lo = -slack; hi = 0.0; break;
-      case 2: c += relax * target_pos; lo = 0.0; hi = slack; break;
-      default: a += k * sp; c += k * sp * slack + relax * target_pos; lo = slack; break;
+      case 0: a_drum = k * sn; c_drum += -k * sn * slack; target = target_neg; hi = -slack; break;
+      case 1: target = target_neg; lo = -slack; hi = 0.0; break;
+      case 2: target = target_pos; lo = 0.0; hi = slack; break;
+      default: a_drum = k * sp; c_drum += k * sp * slack; target = target_pos; lo = slack; break;
     }
+    const double a = relax + f.motion * a_drum, c = f.motion * c_drum + relax * target;
     const double u = c - a * z;  // dz/dt at the start of the piece
     if (u == 0.0) break;
     const double bound = u > 0.0 ? hi : lo;

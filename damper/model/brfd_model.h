@@ -149,6 +149,8 @@ class BrfdModel final : public DamperModel {
     double servo = 0.0;    // η / b of self_energizing's band-force feedback, 1/kip (0: none)
     double servo_share = 0.0;  // η
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
+    double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
+    double band_spring_kip = 0.0;  // self_energizing's k_b d, kip
     double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
   };
   Frame frame(const DamperInput& in) const;

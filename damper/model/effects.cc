@@ -53,12 +53,13 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("asymmetry")) {
     const common::YamlSection a = s.section("asymmetry");
-    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous"});
+    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
     x.stribeck_speed = a.get_double_in("stribeck_speed", 0.0, -0.95, 0.95);
     x.viscous = a.get_double_in("viscous", 0.0, -0.95, 0.95);
+    x.motion_stiffness = a.get_double_in("motion_stiffness", 0.0, -0.95, 0.95);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -80,31 +81,35 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
-    p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent"});
+    p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
     x.wear_per_kip_in = p.get_double_in("wear_per_kip_in", 0.0, -1.0, 1.0);
     x.clamp_exponent = p.get_double_in("clamp_exponent", 1.0, 0.1, 10.0);
+    x.wear_saturation_kip_in = p.get_double_in("wear_saturation_kip_in", 0.0, 0.0, 1e9);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
-    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share"});
+    p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
+                  "band_spring_kip_per_in"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
     x.drum_abs_per_in = p.get_double_in("drum_abs_per_in", 0.0, -5.0, 5.0);
     x.abs_exponent = p.get_double_in("abs_exponent", 1.0, 0.1, 10.0);
     x.band_force_share = p.get_double_in("band_force_share", 0.0, -0.95, 0.95);
+    x.band_spring_kip_per_in = p.get_double_in("band_spring_kip_per_in", 0.0, -20.0, 20.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
-    t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio"});
+    t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
-                                               t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9)};
+                                               t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
+                                               t.get_double_in("dahl_exponent", 1.0, 0.1, 20.0)};
   }
   return e;
 }
@@ -219,11 +224,12 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force",
       "Fc, Fs x (1 +- level), vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
-      "sigma0 x (1 +- stiffness) for z >= 0 / z < 0",
+      "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward",
       {{"level", -0.5, 0.5, 0.0, 0.1, false},
        {"stiffness", -0.8, 0.8, 0.0, 0.3, false},
        {"stribeck_speed", -0.7, 0.7, 0.0, 0.2, false},
-       {"viscous", -0.8, 0.8, 0.0, 0.2, false}},
+       {"viscous", -0.8, 0.8, 0.0, 0.2, false},
+       {"motion_stiffness", -0.8, 0.8, 0.0, 0.3, false}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -231,10 +237,11 @@ std::vector<EffectSpec> build_library() {
         a.stiffness = t[1];
         a.stribeck_speed = t[2];
         a.viscous = t[3];
+        a.motion_stiffness = t[4];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
-        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous};
+        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous, a.motion_stiffness};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and quadratic viscous force, rate-and-state levels",
@@ -270,11 +277,12 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc, Fs x (1 - wear W), dW/dt = |F v|; clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
+      "Fc, Fs x (1 - wear W0 (1 - exp(-W/W0))), dW/dt = |F v| (W0 = wear_saturation); clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
-       {"wear_per_kip_in", -0.003, 0.003, 0.0, 0.0005, false},
-       {"clamp_exponent", 0.3, 3.0, 1.0, 0.67, true}},
+       {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
+       {"clamp_exponent", 0.3, 3.0, 1.0, 0.67, true},
+       {"wear_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -282,19 +290,23 @@ std::vector<EffectSpec> build_library() {
         p.instant_share = t[1];
         p.wear_per_kip_in = t[2];
         p.clamp_exponent = t[3];
+        p.wear_saturation_kip_in = t[4];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
-        return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent};
+        return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
+                                   p.wear_saturation_kip_in};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
-      "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0",
+      "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
+      "F += k_b d (band_spring)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true},
-       {"band_force_share", -0.6, 0.6, 0.0, 0.2, false}},
+       {"band_force_share", -0.6, 0.6, 0.0, 0.2, false},
+       {"band_spring_kip_per_in", -2.0, 2.0, 0.0, 0.3, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -303,11 +315,12 @@ std::vector<EffectSpec> build_library() {
         p.drum_abs_per_in = t[2];
         p.abs_exponent = t[3];
         p.band_force_share = t[4];
+        p.band_spring_kip_per_in = t[5];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
-                                   p.band_force_share};
+                                   p.band_force_share, p.band_spring_kip_per_in};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -317,12 +330,13 @@ std::vector<EffectSpec> build_library() {
       "rising as a half sine to 1 at |y| = 1 (LuGre: exponent = 1, u = 0, breakaway_ratio = 0)",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
-       {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false}},
+       {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
+       {"dahl_exponent", 0.3, 4.0, 1.0, 2.0, true}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>(
-          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0], t[1], t[2]}; }),
+          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0], t[1], t[2], t[3]}; }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
-        return std::vector<double>{a.exponent, a.elastic_unloading, a.breakaway_ratio};
+        return std::vector<double>{a.exponent, a.elastic_unloading, a.breakaway_ratio, a.dahl_exponent};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {

@@ -53,7 +53,12 @@
 ///    band property may differ, not only the levels):
 ///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
 ///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0);
-///      Stribeck speed v_s × (1 ± a_v) and viscous σ2 × (1 ± a_2), forward + / backward −.
+///      Stribeck speed v_s × (1 ± a_v) and viscous σ2 × (1 ± a_2), forward + / backward −;
+///      the band force builds with the stiffness σ0 (1 ± a_m) by the direction of motion
+///      (motion_stiffness = a_m: dz/dt × (1 ± a_m), so dF/dx = σ0 (1 ± a_m)(1 − F/g sgn v) for
+///      F = σ0 z; steady sliding unchanged. Added 2026-11-26: two outside authors wrote a band
+///      stiffness by the direction of rotation, which the sign of z — the band loaded — does not
+///      give during the unloading after a reversal).
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -87,7 +92,10 @@
 ///    and every friction level with it, falls with the wear depth, which is proportional to the
 ///    friction work done (Archard 1953):  Fc, Fs × max(0.05, 1 − w W),  dW/dt = |F v|  (kip·in,
 ///    W(0) = 0; w < 0: bedding-in, friction rising). In steady sliding at speed v and friction
-///    F = Fc (1 − w W) this gives F(t) = Fc exp(−w Fc v t).
+///    F = Fc (1 − w W) this gives F(t) = Fc exp(−w Fc v t). A loss that levels off (the lining beds
+///    in, the band's creep or stress relaxation ends; wear_saturation_kip_in = W0, added 2026-11-26
+///    after an outside author's pre-tension loss saturating over the slip): 1 − w W becomes
+///    1 − w W0 (1 − e^(−W/W0)), linear for W << W0 (W0 = 0 in a config: linear).
 ///    Clamping law (clamp_exponent = q, added 2026-11-26): friction grows with the normal force as
 ///    a power, Fc = b N^q instead of Eq. (4)'s b N (the increment used everywhere above becomes
 ///    ΔFc = b (N^q − 1)): q < 1 a saturating contact (elastic multi-asperity contact, F ∝ N^(2/3),
@@ -104,7 +112,10 @@
 ///    b the passive kinetic friction of the direction: passive steady sliding is unchanged
 ///    (|N S| = b, φ_s = 1); right after a reversal the unloaded band grips less (φ_s = 1 − η), and a
 ///    tension raised by the actuators is amplified, S = (b + ΔFc)(1 − η)/(1 − η (b + ΔFc)/b).
-///    η ≠ 0 makes the bristle ODE nonlinear: stepped by RK4 sub-steps.
+///    η ≠ 0 makes the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
+///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
+///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
+///    author's band-stretch spring, which the friction-level terms reach only in steady sliding).
 ///  - transition_shape (exponent = α): shape of the stick-to-slip transition (Dahl's exponent). With
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation;
@@ -116,6 +127,12 @@
 ///    and by (1 − u) while the band unloads (y v < 0; elastic_unloading = u: u = 1, the contact
 ///    sticks at a reversal and the force falls back along the elastic line N σ0, as each element of
 ///    a Maxwell-slip model does; LuGre's own unloading slips, at twice the elastic rate from y = 1).
+///    Dahl's own exponent (dahl_exponent = n; Dahl 1968/1976, dF/dx = σ0 |1 − F/Fc sgn v|^n sgn(·)):
+///    with u = 1 − sign(v) × (the shaped slip term above) the remaining share of the way to sliding,
+///      dz/dt = v sign(u) |u|^n   (n = 1: the law above; n > 1 a slow, rounded approach to sliding,
+///      n < 1 sliding reached after a finite travel)
+///    (n added 2026-11-26: three outside authors wrote Dahl's model in this form, (1 − r)^n, which α
+///    (1 − r^α) does not reach.)
 ///    Steady sliding is unchanged (|y| = 1, y v > 0). Stepped by RK4 sub-steps (the ODE is no longer linear).
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
@@ -161,6 +178,7 @@ struct AsymmetryEffect {
   double stiffness = 0.0;  ///< a_σ: band stiffness σ0 × (1 ± a_σ) by the sign of z; |a_σ| < 1
   double stribeck_speed = 0.0;  ///< a_v: Stribeck speed v_s × (1 ± a_v), forward +; |a_v| < 1
   double viscous = 0.0;         ///< a_2: viscous coefficient σ2 × (1 ± a_2), forward +; |a_2| < 1
+  double motion_stiffness = 0.0;  ///< a_m: stiffness of the band-force rate × (1 ± a_m) by the direction of motion; |a_m| < 1
 };
 /// Velocity dependence beyond Eq. (2) (see file comment).
 struct VelocityEffect {
@@ -181,6 +199,7 @@ struct PretensionEffect {
   double instant_share = 0.0;  ///< λ: share of the tension change scaling the band force at once, 0..1
   double wear_per_kip_in = 0.0;  ///< w: relative pre-tension lost per kip·in of friction work (< 0: gained)
   double clamp_exponent = 1.0;   ///< q: kinetic friction ∝ (tension ratio N)^q (1: Eq. 4's linear increment)
+  double wear_saturation_kip_in = 0.0;  ///< W0: friction work over which the loss saturates, kip·in (0: linear)
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {
@@ -189,6 +208,7 @@ struct SelfEnergizingEffect {
   double drum_abs_per_in = 0.0;  ///< μ: relative change with |d|^p, both directions (per in^p)
   double abs_exponent = 1.0;     ///< p of |d|^p (> 0; 1: linear in the rotation)
   double band_force_share = 0.0; ///< η: share of the carried band force fed back into the contact pressure
+  double band_spring_kip_per_in = 0.0;  ///< k_b: elastic force of the stretched bands in parallel, F += k_b d
 };
 
 /// Shape of the stick-to-slip transition (see file comment).
@@ -196,7 +216,10 @@ struct TransitionShapeEffect {
   double exponent = 1.0;           ///< α > 0 (1: LuGre; > 1 sharper, < 1 smoother transition)
   double elastic_unloading = 0.0;  ///< u in [0, 1]: share of the slip suppressed while the band unloads
   double breakaway_ratio = 0.0;    ///< β in [0, 0.9]: force ratio below which the contact is purely elastic
-  bool nonlinear() const { return exponent != 1.0 || elastic_unloading != 0.0 || breakaway_ratio != 0.0; }
+  double dahl_exponent = 1.0;      ///< n > 0: Dahl's exponent of the remaining way to sliding (1: LuGre)
+  bool nonlinear() const {
+    return exponent != 1.0 || elastic_unloading != 0.0 || breakaway_ratio != 0.0 || dahl_exponent != 1.0;
+  }
 };
 
 /// The effects switched on in a model (all absent by default: the paper's model).
