@@ -32,10 +32,20 @@ void BrfdModel::reset() {
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
   held_z_in_ = 0.0;
+  slow_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
   friction_work_kip_in_ = 0.0;
+}
+
+void BrfdModel::set_bristle_in(double z_in) {
+  z_in_ = held_z_in_ = z_in;
+  const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
+  // The slow element carries the same share of its capacity as the main one: k2 z2 = S(z)/σ0.
+  slow_z_in_ = ts && ts->slow_share > 0.0
+                   ? spring_force_kip(z_in) / (params_.lugre.sigma0_kip_per_in * ts->slow_stiffness_ratio)
+                   : 0.0;
 }
 
 double BrfdModel::rate_factor(double speed) const {
@@ -267,7 +277,11 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   // slack_viscous_share of itself while the band is slack (effects.h).
   const double engaged = engaged_share(z);
   const double slack_viscous = params_.effects.backlash ? params_.effects.backlash->slack_viscous_share : 0.0;
-  return f.tension * spring_force_kip(z) + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
+  const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
+  const double slow = ts ? ts->slow_share : 0.0;  // transition_shape's slow contact element
+  const double band = (1.0 - slow) * spring_force_kip(z) +
+                      (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0);
+  return f.tension * band + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
          (engaged + (1.0 - engaged) * slack_viscous) * viscous * v + f.band_spring_kip;
 }
 
@@ -353,6 +367,12 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     }
   }
   const Frame f = frame(in);
+  if (e.transition_shape && e.transition_shape->slow_share > 0.0 && v != 0.0) {
+    // The slow contact element: its own LuGre law, exact over the step (v, g held).
+    const double length = f.g / (f.tension * params_.lugre.sigma0_kip_per_in * e.transition_shape->slow_stiffness_ratio);
+    const double steady = std::copysign(length, v);
+    slow_z_in_ = steady + (slow_z_in_ - steady) * std::exp(-speed * dt_s / length);
+  }
   const double relax = f.relax;  // w / τ_r of residual_static, 1/s
   const double target_pos = f.target_pos, target_neg = f.target_neg;
   if (v == 0.0 && relax == 0.0) return force_in_frame(z_in_, v, f);

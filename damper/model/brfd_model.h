@@ -118,7 +118,9 @@ class BrfdModel final : public DamperModel {
   double initial_bristle_for_force(double f_kip) const;
 
   double bristle_in() const { return z_in_; }
-  void set_bristle_in(double z_in) { z_in_ = held_z_in_ = z_in; }
+  /// Sets the bristle state (and the states that follow it: the held state at rest, the slow
+  /// contact element of transition_shape at the same force ratio).
+  void set_bristle_in(double z_in);
   /// z = 0 and the effect states back to their initial values.
   void reset() override;
 
@@ -170,6 +172,7 @@ class BrfdModel final : public DamperModel {
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
   double held_z_in_ = 0.0;                ///< z_h of residual_static: z when the drum last moved, in
+  double slow_z_in_ = 0.0;                ///< z2 of transition_shape's slow contact element, in
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in

@@ -105,11 +105,14 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
-    t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent"});
+    t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent", "slow_share",
+                  "slow_stiffness_ratio"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
-                                               t.get_double_in("dahl_exponent", 1.0, 0.1, 20.0)};
+                                               t.get_double_in("dahl_exponent", 1.0, 0.1, 20.0),
+                                               t.get_double_in("slow_share", 0.0, 0.0, 0.95),
+                                               t.get_double_in("slow_stiffness_ratio", 1.0, 0.001, 100.0)};
   }
   return e;
 }
@@ -331,12 +334,16 @@ std::vector<EffectSpec> build_library() {
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
-       {"dahl_exponent", 0.3, 4.0, 1.0, 2.0, true}},
+       {"dahl_exponent", 0.3, 4.0, 1.0, 2.0, true},
+       {"slow_share", 0.0, 0.9, 0.0, 0.5, false},
+       {"slow_stiffness_ratio", 0.03, 1.0, 1.0, 0.2, true}},
       &ModelEffects::transition_shape,
-      std::function<TransitionShapeEffect(const std::vector<double>&)>(
-          [](const std::vector<double>& t) { return TransitionShapeEffect{t[0], t[1], t[2], t[3]}; }),
+      std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
+        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5]};
+      }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
-        return std::vector<double>{a.exponent, a.elastic_unloading, a.breakaway_ratio, a.dahl_exponent};
+        return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
+                                   a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {

@@ -134,6 +134,14 @@
 ///    (n added 2026-11-26: three outside authors wrote Dahl's model in this form, (1 − r)^n, which α
 ///    (1 − r^α) does not reach.)
 ///    Steady sliding is unchanged (|y| = 1, y v > 0). Stepped by RK4 sub-steps (the ODE is no longer linear).
+///    A second, slower contact element (slow_share = φ, slow_stiffness_ratio = k2; the two-element
+///    generalized Maxwell-slip model, Lampaert, Al-Bender & Swevers 2003; Al-Bender et al. 2005: asperity
+///    junctions of different stiffness share the load): the band force is (1 − φ) of the one above plus
+///    φ N k2 σ0 z2, dz2/dt = v − |v| N k2 σ0 z2 / g(v) (its own LuGre element, exact exponential step),
+///    so the force reaches sliding over a transition 1/k2 times longer for the share φ; steady
+///    sliding unchanged ((1 − φ) g + φ g). z2 is a state of step() (bristle_rate()/force_kip() read it).
+///    (Added 2026-11-26: four blind Maxwell-slip shapes, several elements of different stiffness,
+///    were outside the one-element family.)
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -217,6 +225,8 @@ struct TransitionShapeEffect {
   double elastic_unloading = 0.0;  ///< u in [0, 1]: share of the slip suppressed while the band unloads
   double breakaway_ratio = 0.0;    ///< β in [0, 0.9]: force ratio below which the contact is purely elastic
   double dahl_exponent = 1.0;      ///< n > 0: Dahl's exponent of the remaining way to sliding (1: LuGre)
+  double slow_share = 0.0;         ///< φ in [0, 0.9): share of the friction carried by a second, slower contact element
+  double slow_stiffness_ratio = 1.0;  ///< k2 > 0: that element's stiffness / σ0 (its transition is 1/k2 times longer)
   bool nonlinear() const {
     return exponent != 1.0 || elastic_unloading != 0.0 || breakaway_ratio != 0.0 || dahl_exponent != 1.0;
   }

@@ -58,7 +58,7 @@ ModelEffects all_effects() {
   e.velocity = VelocityEffect{1.5, 0.2, 0.1, -0.05, 1.0, 0.05, 0.1, 0.05, 0.1};
   e.pretension = PretensionEffect{0.8, 0.7, 0.0, 0.8};
   e.self_energizing = SelfEnergizingEffect{-0.15, 0.1, 0.12, 1.5, 0.0, 0.3};
-  e.transition_shape = TransitionShapeEffect{3.0, 0.5, 0.3};
+  e.transition_shape = TransitionShapeEffect{3.0, 0.5, 0.3, 1.0, 0.3, 0.3};
   return e;
 }
 
@@ -304,6 +304,38 @@ TEST(Effects, BandSpringAddsAnElasticForceInParallel) {
     const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
     EXPECT_NEAR(m.step(in, dt), dir * fc + kb * in.drum_disp_in, 1e-6) << "dir " << dir;
   }
+}
+
+// transition_shape's slow contact element (two-element Maxwell-slip), σ1 = σ2 = 0, Fs = Fc: from rest
+// at constant v > 0, F = (1 − φ) Fc (1 − e^(−σ0 x/Fc)) + φ Fc (1 − e^(−k2 σ0 x/Fc)); after a reversal
+// from steady sliding each element unloads on its own: F = (1 − φ) [..] + φ [..] with its own length.
+TEST(Effects, SlowContactElementAddsASecondLongerTransition) {
+  BrfdParams p = coulomb_band();
+  const double fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip, s0 = p.lugre.sigma0_kip_per_in;
+  const double phi = 0.4, k2 = 0.2, dt = 1e-4;
+  p.effects.transition_shape = TransitionShapeEffect{1.0, 0.0, 0.0, 1.0, phi, k2};
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = 1.0;
+  double worst = 0.0;
+  const int n = static_cast<int>(std::round(5.0 * fc / (k2 * s0) / dt));  // five slow lengths
+  for (int i = 1; i <= n; ++i) {
+    const double x = i * dt;
+    const double expected = (1.0 - phi) * fc * (1.0 - std::exp(-s0 * x / fc)) + phi * fc * (1.0 - std::exp(-k2 * s0 * x / fc));
+    worst = std::max(worst, std::abs(m.step(in, dt) - expected));
+  }
+  EXPECT_LT(worst, 1e-9);
+  // Reversal: each element goes from +its capacity towards −its capacity with its own length.
+  const double start_main = 1.0 - std::exp(-s0 * n * dt / fc), start_slow = 1.0 - std::exp(-k2 * s0 * n * dt / fc);
+  in.drum_vel_in_per_s = -1.0;
+  worst = 0.0;
+  for (int i = 1; i <= 20000; ++i) {
+    const double x = i * dt;
+    const double main = -fb + (start_main * fc + fb) * std::exp(-s0 * x / fb);
+    const double slow = -fb + (start_slow * fc + fb) * std::exp(-k2 * s0 * x / fb);
+    worst = std::max(worst, std::abs(m.step(in, dt) - ((1.0 - phi) * main + phi * slow)));
+  }
+  EXPECT_LT(worst, 1e-9);
 }
 
 // Elasto-plastic / Maxwell-slip pre-sliding (transition_shape's breakaway_ratio β and
