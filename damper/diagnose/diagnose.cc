@@ -1,6 +1,7 @@
 #include "damper/diagnose/diagnose.h"
 
 #include "common/number_format.h"
+#include "common/parallel_for.h"
 #include "damper/model/brfd_config.h"
 #include "damper/diagnose/diagnose_fit.h"
 #include "damper/diagnose/diagnose_report.h"
@@ -66,10 +67,12 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
   if (o.base == BaseSource::identify) before.file_lugre = model.lugre;  // the fits' second start
   std::vector<std::string> paths;
   if (!o.measured.empty() || o.measured_tests.empty()) paths = expand_measured_paths(o.measured);
-  for (std::size_t m = 0; m < paths.size() + o.measured_tests.size(); ++m) {
+  // Read and split every record, then identify their bases in parallel (independent fits), then
+  // report in record order.
+  const std::size_t n_records = paths.size() + o.measured_tests.size();
+  for (std::size_t m = 0; m < n_records; ++m) {
     DiagnoseRecord r;
     r.test = m < paths.size() ? read_measured_record(paths[m], o.read) : o.measured_tests[m - paths.size()];
-    for (const std::string& n : r.test.notes) log(n);
     if (r.test.has_actuator_positions && o.actuator_smoothing_s > 0.0) {
       const int hw = static_cast<int>(std::lround(0.5 * o.actuator_smoothing_s / r.test.dt_s));
       if (hw > 0) {
@@ -78,10 +81,21 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
       }
     }
     r.seg = segment_record(r.test, o.segmentation);
+    recs.push_back(std::move(r));
+  }
+  std::vector<BrfdParams> bases(n_records);
+  std::vector<double> window_rmses(n_records, 0.0);
+  std::vector<std::string> not_identifieds(n_records);
+  common::parallel_for(n_records, o.threads, [&](std::size_t m) {
+    bases[m] = record_base(recs[m], model, o, &window_rmses[m], &not_identifieds[m]);
+  });
+  for (std::size_t m = 0; m < n_records; ++m) {
+    const DiagnoseRecord& r = recs[m];
+    for (const std::string& n : r.test.notes) log(n);
     const double t_passive = passive_window_end_s(r, o);
-    double window_rmse = 0.0;
-    std::string not_identified;
-    const BrfdParams base = record_base(r, model, o, &window_rmse, &not_identified);
+    const double window_rmse = window_rmses[m];
+    const std::string& not_identified = not_identifieds[m];
+    const BrfdParams& base = bases[m];
     if (o.base == BaseSource::identify && !not_identified.empty())
       log(r.test.name() + ": base LuGre from the model file (" + not_identified + ")");
     else if (o.base == BaseSource::identify)
@@ -107,7 +121,6 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
     rep.heldout_s = held_s;
     rep.base_params = base;
     result.records.push_back(rep);
-    recs.push_back(std::move(r));
   }
   log(std::string("base parameters: ") +
       (o.base == BaseSource::identify
@@ -258,7 +271,7 @@ void final_gap(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model,
       result.updated_params.lugre = joint_passive_lugre(frecs, model, effects, 400);
     const BrfdParams file = through_yaml(result.updated_params, o.out_dir);
     double sum_after = 0.0, max_after = 0.0;
-    for (std::size_t k = 0; k < recs.size(); ++k) {
+    common::parallel_for(recs.size(), o.threads, [&](std::size_t k) {  // independent per record
       RecordReport& rep = result.records[k];
       if (result.added.empty()) {
         rep.final_params = rep.base_params;
@@ -270,6 +283,9 @@ void final_gap(const std::vector<DiagnoseRecord>& recs, const BrfdParams& model,
       rep.after = force_error(recs[k].test.force_kip, after[k], 0, recs[k].test.size());
       rep.updated_config = force_error(recs[k].test.force_kip, simulate(for_record(file, recs[k].test), recs[k].test), 0,
                                        recs[k].test.size());
+    });
+    for (std::size_t k = 0; k < recs.size(); ++k) {
+      const RecordReport& rep = result.records[k];
       sum_after += rep.after.nrmse_std;
       max_after = std::max(max_after, rep.after.nrmse_std);
     }

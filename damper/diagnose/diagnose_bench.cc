@@ -467,6 +467,7 @@ BenchResult run_diagnose_bench(const BenchOptions& bo) {
         o.seed = seed;
         o.effect_evals = bo.effect_evals;
         o.fit_rate_hz = bo.fit_rate_hz;
+        o.threads = bo.threads;
         if (bo.verbose) o.log = bo.log;
         if (identify) {
           o.base_identification.global_runs = 1;

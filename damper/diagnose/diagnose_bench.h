@@ -47,6 +47,7 @@ struct BenchOptions {
   std::function<void(const std::string&)> log;
   bool verbose = false;            ///< also log each diagnose report
   int effect_evals = 60;           ///< diagnose's LN_BOBYQA evaluations per start of an effect fit
+  int threads = 0;                 ///< diagnose's fit threads (0: the hardware threads)
   /// diagnose's fit rate, Hz: 0 = diagnose's default, the records' own rate (no decimation; a
   /// 256 Hz fit rate leaves a discretization residual that a second effect then explained in 26 of
   /// 156 trials at noise 0.02, docs/diagnose.md).

@@ -1,6 +1,7 @@
 #include "damper/diagnose/diagnose_select.h"
 
 #include "common/number_format.h"
+#include "common/parallel_for.h"
 #include "damper/diagnose/diagnose_noise.h"
 
 #include <algorithm>
@@ -14,6 +15,8 @@ namespace damper {
 namespace {
 
 using common::format_significant;
+using common::parallel_for;
+
 
 // Parts of a record: the spans of its split from sample `from` on (each drum cycle / rest half).
 void add_parts(const DiagnoseRecord& r, std::size_t k, std::size_t from, bool heldout_only, std::vector<HeldOutPart>& parts) {
@@ -244,15 +247,22 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   std::vector<std::size_t> part_record;
   std::vector<std::vector<double>> null_res(recs.size());
   std::vector<std::vector<std::uint8_t>> scored(recs.size());
-  for (const Fold& fold : plan.folds) {
+  const std::size_t n_folds = plan.folds.size();
+  stage_a.resize(n_folds);
+  nulls.resize(n_folds);
+  null_pred.resize(n_folds);
+  parallel_for(n_folds, o.threads, [&](std::size_t f) {
     FitSettings fa = fs;
     fa.iterations = added.empty() ? 1 : fs.iterations;
-    stage_a.push_back(fit_model(recs, current, added_space, fold.fit_mask, fa));
-    nulls.push_back(fit_model(recs, stage_a.back(), FitSpace{}, fold.fit_mask, fs));
-    null_pred.push_back(predict_fold(recs, fold, nulls.back()));
+    stage_a[f] = fit_model(recs, current, added_space, plan.folds[f].fit_mask, fa);
+    nulls[f] = fit_model(recs, stage_a[f], FitSpace{}, plan.folds[f].fit_mask, fs);
+    null_pred[f] = predict_fold(recs, plan.folds[f], nulls[f]);
+  });
+  for (std::size_t f = 0; f < n_folds; ++f) {
+    const Fold& fold = plan.folds[f];
     for (const HeldOutPart& p : fold.parts) {
       part_record.push_back(p.record);
-      const std::vector<double>& pr = null_pred.back().pred[p.record];
+      const std::vector<double>& pr = null_pred[f].pred[p.record];
       if (null_res[p.record].empty()) {
         null_res[p.record].resize(pr.size());
         for (std::size_t i = 0; i < pr.size(); ++i) null_res[p.record][i] = pr[i] - recs[p.record].test.force_kip[i];
@@ -274,7 +284,14 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   RegimeEnergy null_energy;
   for (std::size_t f = 0; f < plan.folds.size(); ++f) null_energy += fold_energy(recs, plan.folds[f], null_pred[f], o.segmentation);
 
-  // Each candidate: same procedure from stage A with its parameters free.
+  // Each candidate: same procedure from stage A with its parameters free; the candidate x fold
+  // fits are independent and run in parallel.
+  std::vector<ModelState> cand_fit(todo.size() * n_folds);
+  std::vector<int> cand_evals(todo.size() * n_folds, 0);
+  parallel_for(cand_fit.size(), o.threads, [&](std::size_t i) {
+    const std::size_t c = i / n_folds, f = i % n_folds;
+    cand_fit[i] = fit_model(recs, stage_a[f], FitSpace{{todo[c]}}, plan.folds[f].fit_mask, fs, &cand_evals[i]);
+  });
   std::vector<std::vector<FoldPredictions>> cand_pred(todo.size());
   for (std::size_t c = 0; c < todo.size(); ++c) {
     const EffectSpec* spec = todo[c];
@@ -286,7 +303,8 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     double own_all[2] = {0.0, 0.0};
     for (std::size_t f = 0; f < plan.folds.size(); ++f) {
       const Fold& fold = plan.folds[f];
-      ModelState fit = fit_model(recs, stage_a[f], FitSpace{{spec}}, fold.fit_mask, fs, &s.evaluations);
+      const ModelState& fit = cand_fit[c * n_folds + f];
+      s.evaluations += cand_evals[c * n_folds + f];
       const bool null_result = at_null(*spec, fit.effects);
       FoldPredictions fp = null_result ? null_pred[f] : predict_fold(recs, fold, fit);
       for (const HeldOutPart& p : fold.parts) {

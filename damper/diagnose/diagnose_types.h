@@ -65,6 +65,9 @@ struct DiagnoseOptions {
   /// "something is missing that no library effect explains", not named (docs/diagnose.md, step 7).
   double min_explained_share = 0.6;
   int resamples = 200;                   ///< bootstrap resamples per round
+  /// Threads for the fits of one round (the candidates x folds are independent; the verdict does
+  /// not depend on the count). 0: the machine's hardware threads.
+  int threads = 0;
   unsigned seed = 7;                     ///< bootstrap seed (reproducible verdicts)
   int max_effects = 4;                   ///< at most this many effects are added
   bool figures = true;                   ///< run gnuplot (needs out_dir)

@@ -18,9 +18,57 @@ std::unique_ptr<DamperModel> make_damper_model(const BrfdParams& params) {
   return std::make_unique<BrfdModel>(params);
 }
 
+namespace {
+
+// |d(rate/|v|)/dw| of transition_shape's bristle law at w = sign(v) y (rate_in_frame): the shaped
+// ratio s(w) = sign(w) |w|^α e(|w|) (1 − u [w < 0]) and Dahl's sign(q)|q|^n of q = 1 − s(w). The
+// α term is taken at |w| >= 0.05 for α < 1 (its slope is unbounded at w = 0), Dahl's at
+// |q| >= 0.05 for n < 1, as the sub-step bound always did.
+double shape_slope(const TransitionShapeEffect& ts, double w) {
+  const double aw = std::abs(w), alpha = ts.exponent, beta = ts.breakaway_ratio;
+  const double power = std::pow(aw, alpha);
+  const double power_slope = alpha * std::pow(alpha < 1.0 ? std::max(aw, 0.05) : aw, alpha - 1.0);
+  double gate = 1.0, gate_slope = 0.0;
+  if (beta > 0.0) {
+    const double phase = M_PI * (aw - 0.5 * (1.0 + beta)) / (1.0 - beta);
+    gate = aw <= beta ? 0.0 : aw >= 1.0 ? 1.0 : 0.5 + 0.5 * std::sin(phase);
+    gate_slope = aw <= beta || aw >= 1.0 ? 0.0 : 0.5 * M_PI / (1.0 - beta) * std::cos(phase);
+  }
+  const double unloading = w < 0.0 ? 1.0 - ts.elastic_unloading : 1.0;
+  const double shaped = std::copysign(power * gate * unloading, w);
+  const double shaped_slope = unloading * (power_slope * gate + power * gate_slope);
+  const double n = ts.dahl_exponent, q = std::abs(1.0 - shaped);
+  const double dahl = n == 1.0 ? 1.0 : n * std::pow(n < 1.0 ? std::max(q, 0.05) : q, n - 1.0);
+  return dahl * shaped_slope;
+}
+
+}  // namespace
+
 BrfdModel::BrfdModel(const BrfdParams& params)
     : params_(params), has_effects_(!params.effects.empty()) {
+  const std::optional<TransitionShapeEffect>& ts = params_.effects.transition_shape;
+  if (ts && ts->nonlinear()) {
+    // Running maxima of the slope from each grid point towards w = 1, where the bristle state
+    // settles (for constant v it moves monotonically towards it).
+    const int n = static_cast<int>(std::lround(-2.0 * kSlopeGridLo / kSlopeGridStep)) + 1;
+    const int one = static_cast<int>(std::lround((1.0 - kSlopeGridLo) / kSlopeGridStep));
+    slope_to_steady_.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) slope_to_steady_[i] = shape_slope(*ts, kSlopeGridLo + i * kSlopeGridStep);
+    for (int i = one - 1; i >= 0; --i) slope_to_steady_[i] = std::max(slope_to_steady_[i], slope_to_steady_[i + 1]);
+    for (int i = one + 1; i < n; ++i) slope_to_steady_[i] = std::max(slope_to_steady_[i], slope_to_steady_[i - 1]);
+  }
   reset();
+}
+
+double BrfdModel::shape_slope_to_steady(double w0) const {
+  if (slope_to_steady_.empty()) return -1.0;
+  const double x = (w0 - kSlopeGridLo) / kSlopeGridStep;
+  if (!(x >= 0.0) || x >= static_cast<double>(slope_to_steady_.size() - 1)) return -1.0;
+  // The cell [w_i, w_i+1] holding w0 and everything from it to w = 1: below 1 the maxima grow
+  // towards lower w (take w_i's), above 1 towards higher w (take w_i+1's).
+  const std::size_t i = static_cast<std::size_t>(x);
+  const double one = (1.0 - kSlopeGridLo) / kSlopeGridStep;
+  return static_cast<double>(i) < one ? slope_to_steady_[i] : slope_to_steady_[i + 1];
 }
 
 void BrfdModel::reset() {
@@ -387,18 +435,24 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     // sub-steps, enough to keep h × (largest rate constant) <= 0.25. With α < 1 the rate constant
     // α |y|^(α−1) is largest at small |y|: bounded with |y| >= 0.05.
     const double alpha = shaped ? e.transition_shape->exponent : 1.0;
-    const double y0 = std::abs(f.tension * spring_force_kip(z_in_) / f.g);
+    const double band0 = f.tension * spring_force_kip(z_in_);
+    const double y0 = std::abs(band0 / f.g);
     const double release = e.backlash ? e.backlash->release_ratio : 1.0;
-    double slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
-    // The breakaway's half-sine rises with slope π/(2(1 − β)) in y.
-    if (shaped && e.transition_shape->breakaway_ratio > 0.0)
-      slope *= 1.0 + M_PI / (2.0 * (1.0 - e.transition_shape->breakaway_ratio));
-    // Dahl's n: d|u|^n/du = n |u|^(n−1), u in [0, 2]; bounded with |u| >= 0.05 for n < 1.
-    const double dahl = shaped ? e.transition_shape->dahl_exponent : 1.0;
-    if (dahl != 1.0) slope *= dahl >= 1.0 ? dahl * std::pow(2.0, dahl - 1.0) : dahl * std::pow(0.05, dahl - 1.0);
+    const double servo0 = f.servo != 0.0 ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band0), 0.2, 3.0) : 1.0;
+    // The shaped law's slope: its largest value between the step's start and the steady state
+    // (slope_to_steady_), or, off that grid, the bound over every |y| below max(1, |y0|).
+    double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / (f.g * servo0)) : 1.0;
+    if (slope < 0.0) {
+      slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
+      // The breakaway's half-sine rises with slope π/(2(1 − β)) in y.
+      if (e.transition_shape->breakaway_ratio > 0.0)
+        slope *= 1.0 + M_PI / (2.0 * (1.0 - e.transition_shape->breakaway_ratio));
+      // Dahl's n: d|u|^n/du = n |u|^(n−1), u in [0, 2]; bounded with |u| >= 0.05 for n < 1.
+      const double dahl = e.transition_shape->dahl_exponent;
+      if (dahl != 1.0) slope *= dahl >= 1.0 ? dahl * std::pow(2.0, dahl - 1.0) : dahl * std::pow(0.05, dahl - 1.0);
+    }
     // Self-servo: g φ_s with φ_s at the step's start (it changes little over one step), twice.
-    const double servo =
-        f.servo != 0.0 ? 2.0 / std::clamp(1.0 - f.servo_share + f.servo * y0 * f.g, 0.2, 3.0) : 1.0;
+    const double servo = f.servo != 0.0 ? 2.0 / servo0 : 1.0;
     const double stiff = k * std::max(sp, sn) * slope * servo * 1.5 * release * f.motion + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
     const double h = dt_s / n;

@@ -178,6 +178,13 @@ class BrfdModel final : public DamperModel {
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)
+  /// transition_shape's sub-step bound: slope_to_steady_[i] = the largest |d(rate/|v|)/dw| of the
+  /// shaped bristle law between w_i and the steady state w = 1, w = sign(v) y on the grid
+  /// kSlopeGridLo + i kSlopeGridStep (empty without a nonlinear transition_shape).
+  std::vector<double> slope_to_steady_;
+  static constexpr double kSlopeGridLo = -4.0, kSlopeGridStep = 0.01;
+  /// That bound for a step starting at w0; < 0 when w0 is off the grid.
+  double shape_slope_to_steady(double w0) const;
 };
 
 /// The damper model a BrfdParams describes (the factory every user of a config calls).

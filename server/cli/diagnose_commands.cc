@@ -94,6 +94,10 @@ void add_diagnose_commands(CLI::App& app) {
   cmd->add_option("--base-refit-evals", o.base_refit_evals,
                   "LN_BOBYQA evaluations of each re-identification of the base with trial effects")
       ->check(CLI::Range(1, 1000000))->capture_default_str();
+  cmd->add_option("--threads", o.threads,
+                  "threads for the candidate fits of a round (0: the machine's hardware threads; the verdict does not "
+                  "depend on it)")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
   cmd->add_flag("--no-figures", a->no_figures, "do not run gnuplot");
   // `diagnose bench`: the hidden-effect benchmark (damper/diagnose_bench.h).
   struct BenchArgs {
@@ -111,6 +115,8 @@ void add_diagnose_commands(CLI::App& app) {
   bench->add_option("--out", b->o.out_dir, "folder for bench.csv");
   bench->add_option("--effect-evals", b->o.effect_evals, "diagnose's LN_BOBYQA evaluations per start of an effect fit")
       ->check(CLI::Range(5, 100000))->capture_default_str();
+  bench->add_option("--threads", b->o.threads, "diagnose's fit threads (0: the machine's hardware threads)")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
   bench->add_flag("--hidden-shapes", b->o.hidden_shapes,
                   "also run the shapes of damper/synthetic (written blind by another author)");
   bench->add_flag("--only-hidden-shapes", b->o.only_hidden_shapes, "run only the shapes of damper/synthetic");

@@ -118,6 +118,40 @@ TEST(DiagnoseSelection, CandidatePinnedAtItsNullValueNeverWins) {
   }
 }
 
+// The candidate x fold fits of a round run on several threads (DiagnoseOptions::threads); each
+// writes only its own result, so one thread and two give the same scores, bit for bit, and the
+// same winner.
+TEST(DiagnoseSelection, TheVerdictDoesNotDependOnTheThreadCount) {
+  BrfdParams truth = bench_base_model();
+  truth.effects.backlash = BacklashEffect{0.04, 0.0, 1.0};
+  std::vector<DiagnoseRecord> recs;
+  for (const BrfdTest& t : records_of(truth, 0.03, 6)) recs.push_back({t, segment_record(t)});
+  std::vector<const EffectSpec*> todo;
+  for (const char* name : {"backlash", "actuator_lag", "residual_static", "transition_shape"})
+    todo.push_back(&effect_spec(name));
+  const ModelState start = exact_bases(recs);
+  std::vector<RoundOutcome> outs;
+  for (int threads : {1, 2}) {
+    DiagnoseOptions o;
+    o.base = BaseSource::model;
+    o.effect_evals = 20;
+    o.threads = threads;
+    outs.push_back(run_round(1, recs, make_validation_plan(recs), start, {}, todo, o));
+  }
+  ASSERT_EQ(outs[0].scores.size(), todo.size());
+  ASSERT_EQ(outs[1].scores.size(), todo.size());
+  EXPECT_EQ(outs[0].winner, outs[1].winner);
+  ASSERT_GE(outs[0].winner, 0);
+  EXPECT_EQ(outs[0].scores[static_cast<std::size_t>(outs[0].winner)].effect, "backlash");
+  for (std::size_t c = 0; c < todo.size(); ++c) {
+    EXPECT_EQ(outs[0].scores[c].theta, outs[1].scores[c].theta) << todo[c]->name;
+    EXPECT_EQ(outs[0].scores[c].part_gain_kip2, outs[1].scores[c].part_gain_kip2) << todo[c]->name;
+    EXPECT_EQ(outs[0].scores[c].evaluations, outs[1].scores[c].evaluations) << todo[c]->name;
+    EXPECT_EQ(outs[0].scores[c].confidence, outs[1].scores[c].confidence) << todo[c]->name;
+  }
+  EXPECT_EQ(outs[0].next.effects.names(), outs[1].next.effects.names());
+}
+
 // A candidate that passes every gate but explains only part of what is missing is not named: the
 // truth has a backlash AND an actuator lag, the only candidate is the actuator lag. It passes (its
 // gain is real, consistent and in its own regime) but leaves the backlash's share of the excess;
