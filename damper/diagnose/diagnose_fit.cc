@@ -211,7 +211,8 @@ ModelState fit_from(const std::vector<DiagnoseRecord>& recs, const ModelState& s
       obj(u0);  // the start (null values, or the previous iteration's) is the reference
       if (it == 0) {
         // Space-filling scan (the typical values and 6 + 4 dim Halton points, the effects already
-        // in the model held at their values), then LN_BOBYQA from the best point and from the start.
+        // in the model held at their values) and an axis scan, then LN_BOBYQA from the best point
+        // and from the start.
         const std::vector<double> typical = space.unit_of(state.effects, true);
         std::vector<double> best_scan = typical;
         double best_value = obj(typical);
@@ -233,6 +234,20 @@ ModelState fit_from(const std::vector<DiagnoseRecord>& recs, const ModelState& s
             best_scan = u;
           }
         }
+        // One parameter at a time from the start, four levels across its range: a missing effect
+        // of another shape often lies near one axis of a family (one exponent, one share), which
+        // a space-filling scan in several dimensions samples sparsely.
+        for (std::size_t j = 0; j < u0.size(); ++j)
+          for (double level : {0.125, 0.375, 0.625, 0.875}) {
+            if (std::abs(level - u0[j]) < 0.05) continue;
+            std::vector<double> u = u0;
+            u[j] = level;
+            const double v = obj(u);
+            if (v < best_value) {
+              best_value = v;
+              best_scan = u;
+            }
+          }
         bobyqa(obj, best_scan, budget);
       }
       bobyqa(obj, u0, budget);
