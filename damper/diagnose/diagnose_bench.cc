@@ -280,11 +280,11 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // A slack band whose lining stays on the drum: the viscous force goes on through the slack.
   c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0}));
   c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0}));
-  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 0.0, 0.05}));
-  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 0.0, 0.05}));
+  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0}));
+  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
-  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 0.0, 0.05}));
-  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 0.0, 0.05}));
+  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0}));
+  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0}));

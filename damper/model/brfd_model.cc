@@ -80,7 +80,6 @@ void BrfdModel::reset() {
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
   held_z_in_ = 0.0;
-  rest_time_s_ = 0.0;
   slow_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
@@ -90,7 +89,6 @@ void BrfdModel::reset() {
 
 void BrfdModel::set_bristle_in(double z_in) {
   z_in_ = held_z_in_ = z_in;
-  rest_time_s_ = 0.0;
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   // The slow element carries the same share of its capacity as the main one: k2 z2 = S(z)/σ0.
   slow_z_in_ = ts && ts->slow_share > 0.0
@@ -284,9 +282,8 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
       const double fc_pos = forward ? l.fc : levels(in, true).fc;
       const double fc_neg = forward ? levels(in, false).fc : l.fc;
       const double m = rs.relaxed_share;
-      const double held = held_z_in_ * rs.creep_factor(rest_time_s_);  // z_h, crept since the stop
-      f.target_pos = (1.0 - m) * held + m * bristle_for_force((rs.ratio * fc_pos + rs.offset_kip) / f.tension);
-      f.target_neg = (1.0 - m) * held + m * bristle_for_force((-rs.ratio * fc_neg + rs.offset_kip) / f.tension);
+      f.target_pos = (1.0 - m) * held_z_in_ + m * bristle_for_force((rs.ratio * fc_pos + rs.offset_kip) / f.tension);
+      f.target_neg = (1.0 - m) * held_z_in_ + m * bristle_for_force((-rs.ratio * fc_neg + rs.offset_kip) / f.tension);
     }
   }
   return f;
@@ -313,7 +310,7 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > b->slack_in) rate *= b->release_ratio;
   rate *= f.motion;  // asymmetry: the band stiffness by the direction of motion
   if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
-  return rate + f.rest_drift;
+  return rate;
 }
 
 double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
@@ -404,10 +401,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     // z_h follows z while the drum moves and holds the state it stopped with: frozen once the rest
     // weight w = exp(−(s̃/v_rest)²) reaches 1/2 (a soft gate would let z_h creep after z at rest).
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
-    if (std::exp(-q * q) < 0.5) {
-      held_z_in_ = z_in_;
-      rest_time_s_ = 0.0;
-    }
+    if (std::exp(-q * q) < 0.5) held_z_in_ = z_in_;
   }
   if (e.velocity && e.velocity->stribeck_lag_s > 0.0)  // lagged speed of the Stribeck term: exact
     stribeck_speed_ = speed + (stribeck_speed_ - speed) * std::exp(-dt_s / e.velocity->stribeck_lag_s);
@@ -420,16 +414,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
       rate_state_s_ = steady + (rate_state_s_ - steady) * std::exp(-vs * dt_s / d);
     }
   }
-  Frame f = frame(in);
-  const bool creeps = e.residual_static && e.residual_static->log_rate != 0.0 &&
-                      std::exp(-std::pow(slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS, 2)) >= 0.5;
-  if (creeps) {
-    // The held share of z follows the creep of z_h over the step, exactly: (1 − m) Δz_h / dt.
-    const ResidualStaticEffect& rs = *e.residual_static;
-    const double dz_held = held_z_in_ * (rs.creep_factor(rest_time_s_ + dt_s) - rs.creep_factor(rest_time_s_));
-    f.rest_drift = (1.0 - rs.relaxed_share) * dz_held / dt_s;
-    rest_time_s_ += dt_s;
-  }
+  const Frame f = frame(in);
   if (e.transition_shape && e.transition_shape->slow_share > 0.0 && v != 0.0) {
     // The slow contact element: its own LuGre law, exact over the step (v, g held).
     const double length = f.g / (f.tension * params_.lugre.sigma0_kip_per_in * e.transition_shape->slow_stiffness_ratio);
@@ -438,7 +423,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   }
   const double relax = f.relax;  // w / τ_r of residual_static, 1/s
   const double target_pos = f.target_pos, target_neg = f.target_neg;
-  if (v == 0.0 && relax == 0.0 && f.rest_drift == 0.0) return force_in_frame(z_in_, v, f);
+  if (v == 0.0 && relax == 0.0) return force_in_frame(z_in_, v, f);
 
   const double slack = e.backlash ? e.backlash->slack_in : 0.0;
   const double k = speed / f.g;  // |v| / g(v)
@@ -497,7 +482,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
       case 2: target = target_pos; lo = 0.0; hi = slack; break;
       default: a_drum = k * sp; c_drum += k * sp * slack; target = target_pos; lo = slack; break;
     }
-    const double a = relax + f.motion * a_drum, c = f.motion * c_drum + relax * target + f.rest_drift;
+    const double a = relax + f.motion * a_drum, c = f.motion * c_drum + relax * target;
     const double u = c - a * z;  // dz/dt at the start of the piece
     if (u == 0.0) break;
     const double bound = u > 0.0 ? hi : lo;

@@ -154,7 +154,6 @@ class BrfdModel final : public DamperModel {
     double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
     double band_spring_kip = 0.0;  // self_energizing's k_b d, kip
     double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
-    double rest_drift = 0.0;  // residual_static's (1 − m) dz_h/dt of the logarithmic creep over the step, in/s
   };
   Frame frame(const DamperInput& in) const;
   double rate_in_frame(double z, double v, const Frame& f) const;
@@ -173,7 +172,6 @@ class BrfdModel final : public DamperModel {
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
   double held_z_in_ = 0.0;                ///< z_h of residual_static: z when the drum last moved, in
-  double rest_time_s_ = 0.0;              ///< t of residual_static's creep: time at rest since the stop, s
   double slow_z_in_ = 0.0;                ///< z2 of transition_shape's slow contact element, in
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s

@@ -34,14 +34,12 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "log_rate", "log_time_s"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
     x.relaxed_share = r.get_double_in("relaxed_share", 1.0, 0.0, 1.0);
     x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
-    x.log_rate = r.get_double_in("log_rate", 0.0, -5.0, 5.0);
-    x.log_time_s = r.get_double_in("log_time_s", 0.05, 1e-4, 100.0);
     e.residual_static = x;
   }
   if (s.has("actuator_lag")) {
@@ -192,13 +190,11 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), z_r = (1 - m) z_held + m z_o, "
-      "S(z_o) = sign(z) ratio Fc + offset; z_h creeps at rest as z_h (1 + log_rate ln(1 + t/log_time_s)), z follows its held share",
+      "S(z_o) = sign(z) ratio Fc + offset",
       {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
        {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
        {"relaxed_share", 0.0, 1.0, 0.0, 1.0, false, true},
-       {"offset_kip", -3.0, 3.0, 0.0, 0.0, false},
-       {"log_rate", -0.5, 1.0, 0.0, -0.1, false},
-       {"log_time_s", 0.005, 1.0, 0.05, 0.05, true}},
+       {"offset_kip", -3.0, 3.0, 0.0, 0.0, false}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
@@ -206,12 +202,10 @@ std::vector<EffectSpec> build_library() {
         r.time_constant_s = t[1];
         r.relaxed_share = t[2];
         r.offset_kip = t[3];
-        r.log_rate = t[4];
-        r.log_time_s = t[5];
         return r;
       }),
       std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
-        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.log_rate, r.log_time_s};
+        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (first- and second-order response)",

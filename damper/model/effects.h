@@ -38,12 +38,6 @@
 ///    imbalance)):
 ///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),
 ///      z_r = (1 − m) z_h + m z_o,  S(z_o) = sign(z) ρ Fc + f_o,
-///    and the held state creeps with the logarithm of the time t at rest (log_rate = c,
-///    log_time_s = t0; Dieterich's aging and logarithmic relaxation of frictional contacts and of
-///    the polymer lining): z_h(t) = z_h (1 + c ln(1 + t/t0)), never past zero, and z follows the
-///    creep of its held share: dz/dt += (1 − m) dz_h/dt. (Added in the fourth session: five
-///    outside authors wrote the held force relaxing or growing as ln(1 + t/t0), which the
-///    exponential settling reaches only over one time scale.)
 ///      z_h = z while the drum moves (w < 1/2), held once it rests (w ≥ 1/2);
 ///      ds̃/dt = (|v| − s̃) / τ_s,  τ_s = 0.05 s, v_rest = 0.05 in/s (fixed); s̃(0) = 1000 in/s.
 ///    (m and f_o added 2026-11-26: outside authors' relaxations of the held force and recoveries
@@ -153,8 +147,6 @@
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
 
 #include <functional>
-#include <algorithm>
-#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -179,14 +171,6 @@ struct ResidualStaticEffect {
   double time_constant_s = 1.0;  ///< τ_r: settling time at rest, s (> 0)
   double relaxed_share = 1.0;    ///< m: share of the way from the held force to the rest level, 0..1
   double offset_kip = 0.0;       ///< f_o: set level added to the rest level, kip
-  /// c: the held state creeps with the log of the rest time, z_h (1 + c ln(1 + t/t0)), never past
-  /// zero (c < 0 relaxation, c > 0 growth of the held force; 0: none)
-  double log_rate = 0.0;
-  double log_time_s = 0.05;      ///< t0 of the logarithmic creep, s (> 0)
-  /// The creep factor max(0, 1 + c ln(1 + t/t0)) after t s at rest.
-  double creep_factor(double rest_s) const {
-    return log_rate == 0.0 ? 1.0 : std::max(0.0, 1.0 + log_rate * std::log1p(rest_s / log_time_s));
-  }
   static constexpr double kRestSpeedInPerS = 0.05;  ///< v_rest
   static constexpr double kSpeedFilterS = 0.05;     ///< τ_s of the low-passed speed s̃
 };
