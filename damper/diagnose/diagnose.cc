@@ -9,6 +9,7 @@
 #include "damper/fit/predict.h"
 
 #include <algorithm>
+#include <deque>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -184,6 +185,7 @@ ModelState select_effects(const std::vector<DiagnoseRecord>& recs, const ModelSt
   log("validation: " + plan.description);
   ModelState current = before;
   std::vector<const EffectSpec*> added;
+  std::deque<EffectSpec> added_specs;  // the accepted effects as fitted (a sub-family where the data identify only one)
   for (int round = 1; round <= o.max_effects; ++round) {
     std::vector<const EffectSpec*> todo;
     for (const EffectSpec* s : library)
@@ -223,7 +225,8 @@ ModelState select_effects(const std::vector<DiagnoseRecord>& recs, const ModelSt
       result.notes.push_back(note);
     }
     current = r.next;
-    added.push_back(&effect_spec(w.effect));
+    added_specs.push_back(r.winner_spec.empty() ? effect_spec(w.effect) : r.winner_spec.front());
+    added.push_back(&added_specs.back());
     result.added.push_back(w.effect);
     result.added_confidence.push_back(w.confidence);
     if (round == o.max_effects) result.stop_reason = "reached --max-effects " + std::to_string(o.max_effects);

@@ -217,7 +217,8 @@ std::string format_evidence(const CandidateScore& c) {
   std::ostringstream o;
   std::string params;
   for (std::size_t j = 0; j < c.theta.size(); ++j) params += (j ? ", " : "") + c.parameter_names[j] + "=" + format_significant(c.theta[j], 4);
-  o << "added " << c.effect << " (" << params << "): held-out RMSE " << format_fixed(c.heldout_rmse_null_kip, 4) << " -> "
+  o << "added " << c.effect << " (" << params << (c.subfamily.empty() ? "" : "; sub-family: " + c.subfamily)
+    << "): held-out RMSE " << format_fixed(c.heldout_rmse_null_kip, 4) << " -> "
     << format_fixed(c.heldout_rmse_kip, 4) << " kip (" << format_fixed(100.0 * c.heldout_gain, 1) << "% of the mean square, "
     << format_fixed(100.0 * c.excess_share, 0) << "% of the excess over noise), better on " << c.parts_improved << " of the "
     << c.parts_changed << " held-out parts it changes, " << format_fixed(100.0 * c.signature_share, 0)

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 namespace damper {
 
@@ -229,6 +230,97 @@ ValidationPlan make_validation_plan(const std::vector<DiagnoseRecord>& recs) {
   return plan;
 }
 
+std::vector<double> rest_held_forces(const std::vector<DiagnoseRecord>& recs,
+                                     const std::vector<std::vector<std::uint8_t>>& mask) {
+  std::vector<double> held;
+  for (std::size_t k = 0; k < recs.size() && k < mask.size(); ++k) {
+    const DiagnoseRecord& r = recs[k];
+    const std::size_t b = r.seg.rest_begin, n = r.test.size();
+    if (b >= n || mask[k].size() != n) continue;
+    if (std::find(mask[k].begin() + static_cast<std::ptrdiff_t>(b), mask[k].end(), 1) == mask[k].end()) continue;
+    const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.01 / r.test.dt_s)));
+    double sum = 0.0;
+    std::size_t m = 0;
+    for (std::size_t i = b; i < n && i < b + w; ++i, ++m) sum += r.test.force_kip[i];
+    held.push_back(sum / static_cast<double>(m));
+  }
+  return held;
+}
+
+int distinct_rest_levels(const std::vector<double>& held_kip) {
+  std::vector<double> levels;
+  for (double f : held_kip) {
+    bool seen = false;
+    for (double l : levels) {
+      const bool same_sign = (f >= 0.0) == (l >= 0.0);
+      const double apart = std::abs(std::abs(f) - std::abs(l));
+      if (same_sign && (apart <= 0.15 * std::max(std::abs(f), std::abs(l)) || apart <= 0.05)) seen = true;
+    }
+    if (!seen) levels.push_back(f);
+  }
+  return static_cast<int>(levels.size());
+}
+
+std::vector<EffectSpec> identifiable_subfamilies(const EffectSpec& spec, int rest_levels) {
+  const std::size_t n = spec.rest_level.size();
+  if (n == 0 || rest_levels <= 0 || static_cast<std::size_t>(rest_levels) >= n) return {spec};
+  // Index of each rest-level parameter in spec.parameters, and the whole family's fixed values.
+  std::vector<std::size_t> at(n);
+  std::vector<double> fixed(spec.parameters.size(), 0.0);
+  for (std::size_t r = 0; r < n; ++r) {
+    std::size_t j = 0;
+    while (j < spec.parameters.size() && spec.parameters[j].name != spec.rest_level[r].first) ++j;
+    if (j == spec.parameters.size())
+      throw std::logic_error("effect " + spec.name + ": rest-level parameter " + spec.rest_level[r].first + " is not a parameter");
+    at[r] = j;
+    fixed[j] = spec.rest_level[r].second;
+  }
+  std::vector<EffectSpec> out;
+  const std::size_t k = static_cast<std::size_t>(rest_levels);
+  // Every choice of k free rest-level parameters, in the library's order (bit masks by rank).
+  std::vector<unsigned> choices;
+  for (unsigned bits = 0; bits < (1u << n); ++bits)
+    if (static_cast<std::size_t>(__builtin_popcount(bits)) == k) choices.push_back(bits);
+  std::sort(choices.begin(), choices.end(), [](unsigned a, unsigned b) {
+    for (unsigned i = 0; i < 32; ++i)
+      if (((a >> i) & 1u) != ((b >> i) & 1u)) return ((a >> i) & 1u) != 0;
+    return false;
+  });
+  for (unsigned bits : choices) {
+    std::vector<std::size_t> free_index;  // positions in spec.parameters of the sub-family's parameters
+    std::string freed, held;
+    for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+      std::size_t r = 0;
+      while (r < n && at[r] != j) ++r;
+      if (r == n || ((bits >> r) & 1u)) {
+        free_index.push_back(j);
+        if (r < n) freed += (freed.empty() ? "" : " ") + spec.parameters[j].name;
+      } else {
+        held += (held.empty() ? "" : " ") + spec.parameters[j].name + "=" + format_significant(fixed[j], 3);
+      }
+    }
+    EffectSpec sub = spec;
+    sub.parameters.clear();
+    for (std::size_t j : free_index) sub.parameters.push_back(spec.parameters[j]);
+    sub.subfamily = freed + " free; " + held + " fixed";
+    const auto whole_set = spec.set;
+    const auto whole_get = spec.get;
+    sub.set = [whole_set, free_index, fixed](ModelEffects& e, const std::vector<double>& theta) {
+      std::vector<double> all = fixed;
+      for (std::size_t i = 0; i < free_index.size(); ++i) all[free_index[i]] = theta[i];
+      whole_set(e, all);
+    };
+    sub.get = [whole_get, free_index](const ModelEffects& e) {
+      const std::vector<double> all = whole_get(e);
+      std::vector<double> theta;
+      for (std::size_t j : free_index) theta.push_back(all[j]);
+      return theta;
+    };
+    out.push_back(std::move(sub));
+  }
+  return out;
+}
+
 RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const ValidationPlan& plan,
                        const ModelState& current, const std::vector<const EffectSpec*>& added,
                        const std::vector<const EffectSpec*>& todo, const DiagnoseOptions& o) {
@@ -284,21 +376,95 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   RegimeEnergy null_energy;
   for (std::size_t f = 0; f < plan.folds.size(); ++f) null_energy += fold_energy(recs, plan.folds[f], null_pred[f], o.segmentation);
 
-  // Each candidate: same procedure from stage A with its parameters free; the candidate x fold
-  // fits are independent and run in parallel.
+  // Each candidate: same procedure from stage A with its parameters free, or with those of each
+  // sub-family the fitting data identify (identifiable_subfamilies: as many rest-level parameters
+  // free as the folds' fitting data hold distinct rests). The candidate x sub-family x fold fits
+  // are independent and run in parallel.
+  int rest_levels = 3;
+  std::vector<double> fold_rests;  // held forces of fold 1's fitting rests, for the note
+  for (std::size_t f = 0; f < n_folds; ++f) {
+    const std::vector<double> held = rest_held_forces(recs, plan.folds[f].fit_mask);
+    if (f == 0) fold_rests = held;
+    rest_levels = std::min(rest_levels, distinct_rest_levels(held));
+  }
+  std::vector<std::vector<EffectSpec>> subfamilies(todo.size());
+  std::vector<std::pair<std::size_t, std::size_t>> items;  // (candidate, sub-family)
+  for (std::size_t c = 0; c < todo.size(); ++c) {
+    subfamilies[c] = identifiable_subfamilies(*todo[c], rest_levels);
+    for (std::size_t v = 0; v < subfamilies[c].size(); ++v) items.emplace_back(c, v);
+  }
+  std::vector<ModelState> item_fit(items.size() * n_folds);
+  std::vector<int> item_evals(items.size() * n_folds, 0);
+  parallel_for(item_fit.size(), o.threads, [&](std::size_t i) {
+    const std::size_t it = i / n_folds, f = i % n_folds;
+    const EffectSpec* spec = &subfamilies[items[it].first][items[it].second];
+    item_fit[i] = fit_model(recs, stage_a[f], FitSpace{{spec}}, plan.folds[f].fit_mask, fs, &item_evals[i]);
+  });
+  // A candidate with several sub-families keeps the one with the smallest held-out error.
+  std::vector<std::size_t> chosen_item(todo.size(), 0);
+  for (std::size_t c = 0; c < todo.size(); ++c) {
+    double best_sse = INFINITY, best_rmse = 0.0;
+    std::vector<std::pair<double, std::string>> tried;
+    for (std::size_t it = 0; it < items.size(); ++it) {
+      if (items[it].first != c) continue;
+      const EffectSpec& spec = subfamilies[c][items[it].second];
+      double sse = 0.0, n = 0.0;
+      for (std::size_t f = 0; f < n_folds; ++f) {
+        const ModelState& fit = item_fit[it * n_folds + f];
+        const FoldPredictions fp = at_null(spec, fit.effects) ? null_pred[f] : predict_fold(recs, plan.folds[f], fit);
+        for (const HeldOutPart& p : plan.folds[f].parts) {
+          sse += part_sse(recs[p.record], fp.pred[p.record], p);
+          n += static_cast<double>(p.end - p.begin);
+        }
+      }
+      tried.emplace_back(n > 0 ? std::sqrt(sse / n) : 0.0, spec.subfamily);
+      // Earlier sub-families (ratio first) are kept unless a later one is better by more than 1 %:
+      // two rests of one sign do not tell a share of Fc from a set level.
+      if (sse < 0.99 * best_sse || !std::isfinite(best_sse)) {
+        best_sse = sse;
+        best_rmse = tried.back().first;
+        chosen_item[c] = it;
+      }
+    }
+    if (tried.size() > 1) {
+      std::string held, others;
+      for (double h : fold_rests) held += (held.empty() ? "" : ", ") + format_significant(h, 3) + " kip";
+      const EffectSpec& chosen = subfamilies[c][items[chosen_item[c]].second];
+      for (const auto& t : tried)
+        if (t.second != chosen.subfamily) others += (others.empty() ? "" : "; ") + t.second + " " + format_significant(t.first, 3) + " kip";
+      out.notes.push_back(todo[c]->name + ": the fitting data of each fold hold " + std::to_string(rest_levels) +
+                          " distinct rest level(s) (fold 1: held " + (held.empty() ? "none" : held) + "), too few to identify all of " +
+                          std::to_string(todo[c]->rest_level.size()) + " rest-level parameters; kept on the held-out parts: " +
+                          chosen.subfamily + " (held-out RMSE " + format_significant(best_rmse, 3) +
+                          " kip) over " + others);
+    }
+  }
   std::vector<ModelState> cand_fit(todo.size() * n_folds);
   std::vector<int> cand_evals(todo.size() * n_folds, 0);
-  parallel_for(cand_fit.size(), o.threads, [&](std::size_t i) {
-    const std::size_t c = i / n_folds, f = i % n_folds;
-    cand_fit[i] = fit_model(recs, stage_a[f], FitSpace{{todo[c]}}, plan.folds[f].fit_mask, fs, &cand_evals[i]);
-  });
+  std::vector<const EffectSpec*> cand_spec(todo.size());
+  for (std::size_t c = 0; c < todo.size(); ++c) {
+    const std::size_t it = chosen_item[c];
+    cand_spec[c] = &subfamilies[c][items[it].second];
+    for (std::size_t f = 0; f < n_folds; ++f) {
+      cand_fit[c * n_folds + f] = item_fit[it * n_folds + f];
+      for (std::size_t j = 0; j < items.size(); ++j)
+        if (items[j].first == c) cand_evals[c * n_folds + f] += item_evals[j * n_folds + f];
+    }
+  }
   std::vector<std::vector<FoldPredictions>> cand_pred(todo.size());
   for (std::size_t c = 0; c < todo.size(); ++c) {
-    const EffectSpec* spec = todo[c];
+    const EffectSpec* spec = cand_spec[c];
+    const EffectSpec& whole = *todo[c];
     CandidateScore s;
     s.round = round;
     s.effect = spec->name;
-    for (const EffectParameter& p : spec->parameters) s.parameter_names.push_back(p.name);
+    s.subfamily = spec->subfamily;
+    for (const EffectParameter& p : whole.parameters) {
+      s.parameter_names.push_back(p.name);
+      bool free = false;
+      for (const EffectParameter& q : spec->parameters) free = free || q.name == p.name;
+      if (!free) s.fixed_parameters.push_back(p.name);
+    }
     double sse0 = 0.0, sse1 = 0.0, n = 0.0;
     double own_all[2] = {0.0, 0.0};
     for (std::size_t f = 0; f < plan.folds.size(); ++f) {
@@ -327,7 +493,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
       s.heldout_energy += fold_energy(recs, fold, fp, o.segmentation);
       signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, own_all);
       cand_pred[c].push_back(std::move(fp));
-      if (f == 0) s.theta = spec->present(fit.effects) ? spec->get(fit.effects) : std::vector<double>{};  // fold 1's
+      if (f == 0) s.theta = whole.present(fit.effects) ? whole.get(fit.effects) : std::vector<double>{};  // fold 1's
     }
     s.heldout_rmse_null_kip = n > 0 ? std::sqrt(sse0 / n) : 0.0;
     s.heldout_rmse_kip = n > 0 ? std::sqrt(sse1 / n) : 0.0;
@@ -388,7 +554,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     return out;
   }
   CandidateScore& w = out.scores[static_cast<std::size_t>(best)];
-  const EffectSpec& wspec = effect_spec(w.effect);
+  const EffectSpec& wspec = *cand_spec[static_cast<std::size_t>(best)];
   // Confusable effects that also pass: told apart part by part, or not.
   for (std::size_t c = 0; c < out.scores.size(); ++c) {
     const CandidateScore& other = out.scores[c];
@@ -433,7 +599,8 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   fa.iterations = added.empty() ? 1 : fs.iterations;
   const ModelState a = fit_model(recs, current, added_space, plan.final_mask, fa);
   out.next = fit_model(recs, a, FitSpace{{&wspec}}, plan.final_mask, fs, &w.evaluations);
-  w.theta = wspec.get(out.next.effects);
+  w.theta = effect_spec(w.effect).get(out.next.effects);
+  out.winner_spec.push_back(wspec);
   return out;
 }
 
@@ -447,6 +614,7 @@ std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c) {
       return p.log_scale ? (std::log(x) - std::log(p.lo)) / (std::log(p.hi) - std::log(p.lo)) : (x - p.lo) / (p.hi - p.lo);
     };
     if (p.share) continue;  // both ends of a share are physical limits
+    if (std::find(c.fixed_parameters.begin(), c.fixed_parameters.end(), p.name) != c.fixed_parameters.end()) continue;
     const double u = unit(c.theta[j]);
     const double tol = 1e-3;
     const bool at_lo = u <= tol && p.null_value != p.lo;

@@ -64,6 +64,9 @@ struct RoundOutcome {
   ModelState next;                      ///< the model with the winner, refitted on the final mask
   std::vector<std::string> notes;       ///< evidence lines (confusable pairs, signatures)
   std::string stop_reason;              ///< set when the round adds nothing
+  /// The accepted effect as fitted: its spec, or the sub-family of it that the data identify
+  /// (identifiable_subfamilies); later rounds refit it within the same sub-family.
+  std::vector<EffectSpec> winner_spec;  ///< empty or one
 };
 
 /// Identifiability of a fitted candidate: its parameters that end at an OUTER search bound (a bound
@@ -72,6 +75,28 @@ struct RoundOutcome {
 /// for more than the family allows: the shape may be another effect's or stronger than the library
 /// reaches, and the fitted values are not identified. Reported with the evidence, not a gate.
 std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c);
+
+/// The rests in the fitting samples of `mask`: for each record whose final rest
+/// (Segmentation::rest_begin) the mask covers, the measured force held when the drum stopped (mean
+/// over the first 10 ms of the rest), kip.
+std::vector<double> rest_held_forces(const std::vector<DiagnoseRecord>& recs,
+                                     const std::vector<std::vector<std::uint8_t>>& mask);
+
+/// How many distinct rest levels `held_kip` holds: two rests count apart when their held forces have
+/// opposite signs or magnitudes more than 15 % (and 0.05 kip) apart.
+int distinct_rest_levels(const std::vector<double>& held_kip);
+
+/// Identifiability of the rest level (EffectSpec::rest_level): the sub-families of `spec` that
+/// `rest_levels` distinct rests can identify, i.e. every choice of min(rest_levels, n) of its n
+/// rest-level parameters free and the others at their fixed values, in the library's order (ratio
+/// first: the classical residual static force). One rest fixes only where its held force settles:
+/// a fit of all of ρ, m and f_o lands anywhere along a valley of equal fits and predicts a rest at
+/// another held force at random (bench residual_static/strong: 6 of 6 before m and f_o were added,
+/// 1 of 6 after). run_round fits each sub-family on every fold and keeps the one with the smallest
+/// held-out error: which of them holds is decided on unseen rests, the only data that can tell.
+/// Returns {spec} when it has no rest-level parameters, when rest_levels is 0 (no rest in the
+/// fitting data: the whole family, as before) or when rest_levels >= n.
+std::vector<EffectSpec> identifiable_subfamilies(const EffectSpec& spec, int rest_levels);
 
 /// Runs one round of the selection from `current` (effects `added` already added by this run)
 /// over the candidates `todo`.

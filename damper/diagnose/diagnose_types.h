@@ -97,6 +97,11 @@ struct CandidateScore {
   std::string verdict;                       ///< why it passes / fails, one phrase
   bool accepted = false;
   int evaluations = 0;
+  /// The sub-family scored when the data identify only part of the family (EffectSpec::subfamily,
+  /// e.g. "ratio free; relaxed_share=1 offset_kip=0 fixed"); empty: the whole family.
+  std::string subfamily;
+  /// Parameters held at a fixed value by the sub-family (not searched, so never "at a bound").
+  std::vector<std::string> fixed_parameters;
 };
 
 /// Noise floor and residual structure of a model's residual (diagnose_noise.h).

@@ -355,6 +355,8 @@ std::vector<EffectSpec> build_library() {
   };
   sig("backlash", {"reversal", "band_reloading"}, {"residual_static", "transition_shape"});
   sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
+  for (EffectSpec& s : lib)
+    if (s.name == "residual_static") s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}};
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

@@ -149,6 +149,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace common {
@@ -286,6 +287,15 @@ struct EffectSpec {
   std::vector<std::string> regimes;
   /// Effects whose residual signature overlaps this one's (confusable pairs).
   std::vector<std::string> confusable;
+  /// Parameters that only rests at different held forces tell apart, each with the value it takes
+  /// while it is not free (residual_static's rest level: ratio 0, relaxed_share 1, offset_kip 0).
+  /// One rest fixes only where the held force settles; ρ, m and f_o move it along a valley of equal
+  /// fits. diagnose frees at most as many of them as the fitting data hold distinct rests and picks
+  /// which by the held-out score (diagnose_select.h, identifiable_subfamilies). Empty elsewhere.
+  std::vector<std::pair<std::string, double>> rest_level;
+  /// Set on a sub-family made by identifiable_subfamilies: "ratio free; relaxed_share=1 offset_kip=0
+  /// fixed" (its `parameters` are the free ones; set/get map them into the whole family).
+  std::string subfamily;
 };
 
 /// The library: backlash, residual_static, actuator_lag, asymmetry, velocity, pretension,
