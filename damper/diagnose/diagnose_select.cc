@@ -261,63 +261,88 @@ int distinct_rest_levels(const std::vector<double>& held_kip) {
   return static_cast<int>(levels.size());
 }
 
-std::vector<EffectSpec> identifiable_subfamilies(const EffectSpec& spec, int rest_levels) {
+namespace {
+
+// The sub-family of `spec` with the parameters at free_index (positions in spec.parameters) free
+// and the others at all_values; its set/get map the free ones into the whole family.
+EffectSpec make_subfamily(const EffectSpec& spec, const std::vector<std::size_t>& free_index,
+                          const std::vector<double>& all_values) {
+  std::string freed, held;
+  for (std::size_t j = 0; j < spec.parameters.size(); ++j)
+    if (std::find(free_index.begin(), free_index.end(), j) != free_index.end())
+      freed += (freed.empty() ? "" : " ") + spec.parameters[j].name;
+    else
+      held += (held.empty() ? "" : " ") + spec.parameters[j].name + "=" + format_significant(all_values[j], 3);
+  EffectSpec sub = spec;
+  sub.parameters.clear();
+  for (std::size_t j : free_index) sub.parameters.push_back(spec.parameters[j]);
+  sub.subfamily = freed + " free; " + held + " fixed";
+  const auto whole_set = spec.set;
+  const auto whole_get = spec.get;
+  sub.set = [whole_set, free_index, all_values](ModelEffects& e, const std::vector<double>& theta) {
+    std::vector<double> all = all_values;
+    for (std::size_t i = 0; i < free_index.size(); ++i) all[free_index[i]] = theta[i];
+    whole_set(e, all);
+  };
+  sub.get = [whole_get, free_index](const ModelEffects& e) {
+    const std::vector<double> all = whole_get(e);
+    std::vector<double> theta;
+    for (std::size_t j : free_index) theta.push_back(all[j]);
+    return theta;
+  };
+  return sub;
+}
+
+std::size_t parameter_index(const EffectSpec& spec, const std::string& name) {
+  for (std::size_t j = 0; j < spec.parameters.size(); ++j)
+    if (spec.parameters[j].name == name) return j;
+  throw std::logic_error("effect " + spec.name + ": " + name + " is not a parameter");
+}
+
+}  // namespace
+
+std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_levels) {
   const std::size_t n = spec.rest_level.size();
-  if (n == 0 || rest_levels <= 0 || static_cast<std::size_t>(rest_levels) >= n) return {spec};
-  // Index of each rest-level parameter in spec.parameters, and the whole family's fixed values.
-  std::vector<std::size_t> at(n);
-  std::vector<double> fixed(spec.parameters.size(), 0.0);
-  for (std::size_t r = 0; r < n; ++r) {
-    std::size_t j = 0;
-    while (j < spec.parameters.size() && spec.parameters[j].name != spec.rest_level[r].first) ++j;
-    if (j == spec.parameters.size())
-      throw std::logic_error("effect " + spec.name + ": rest-level parameter " + spec.rest_level[r].first + " is not a parameter");
-    at[r] = j;
-    fixed[j] = spec.rest_level[r].second;
-  }
-  std::vector<EffectSpec> out;
-  const std::size_t k = static_cast<std::size_t>(rest_levels);
-  // Every choice of k free rest-level parameters, in the library's order (bit masks by rank).
-  std::vector<unsigned> choices;
-  for (unsigned bits = 0; bits < (1u << n); ++bits)
-    if (static_cast<std::size_t>(__builtin_popcount(bits)) == k) choices.push_back(bits);
-  std::sort(choices.begin(), choices.end(), [](unsigned a, unsigned b) {
-    for (unsigned i = 0; i < 32; ++i)
-      if (((a >> i) & 1u) != ((b >> i) & 1u)) return ((a >> i) & 1u) != 0;
-    return false;
-  });
-  for (unsigned bits : choices) {
-    std::vector<std::size_t> free_index;  // positions in spec.parameters of the sub-family's parameters
-    std::string freed, held;
-    for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
-      std::size_t r = 0;
-      while (r < n && at[r] != j) ++r;
-      if (r == n || ((bits >> r) & 1u)) {
-        free_index.push_back(j);
-        if (r < n) freed += (freed.empty() ? "" : " ") + spec.parameters[j].name;
-      } else {
-        held += (held.empty() ? "" : " ") + spec.parameters[j].name + "=" + format_significant(fixed[j], 3);
-      }
+  if (n > 0 && rest_levels > 0 && static_cast<std::size_t>(rest_levels) < n) {
+    // Index of each rest-level parameter, and the whole family's values with them fixed.
+    std::vector<std::size_t> at(n);
+    std::vector<double> fixed(spec.parameters.size(), 0.0);
+    for (std::size_t r = 0; r < n; ++r) {
+      at[r] = parameter_index(spec, spec.rest_level[r].first);
+      fixed[at[r]] = spec.rest_level[r].second;
     }
-    EffectSpec sub = spec;
-    sub.parameters.clear();
-    for (std::size_t j : free_index) sub.parameters.push_back(spec.parameters[j]);
-    sub.subfamily = freed + " free; " + held + " fixed";
-    const auto whole_set = spec.set;
-    const auto whole_get = spec.get;
-    sub.set = [whole_set, free_index, fixed](ModelEffects& e, const std::vector<double>& theta) {
-      std::vector<double> all = fixed;
-      for (std::size_t i = 0; i < free_index.size(); ++i) all[free_index[i]] = theta[i];
-      whole_set(e, all);
-    };
-    sub.get = [whole_get, free_index](const ModelEffects& e) {
-      const std::vector<double> all = whole_get(e);
-      std::vector<double> theta;
-      for (std::size_t j : free_index) theta.push_back(all[j]);
-      return theta;
-    };
-    out.push_back(std::move(sub));
+    // Every choice of rest_levels free rest-level parameters, in the library's order.
+    std::vector<unsigned> choices;
+    for (unsigned bits = 0; bits < (1u << n); ++bits)
+      if (static_cast<int>(__builtin_popcount(bits)) == rest_levels) choices.push_back(bits);
+    std::sort(choices.begin(), choices.end(), [](unsigned a, unsigned b) {
+      for (unsigned i = 0; i < 32; ++i)
+        if (((a >> i) & 1u) != ((b >> i) & 1u)) return ((a >> i) & 1u) != 0;
+      return false;
+    });
+    std::vector<EffectSpec> out;
+    for (unsigned bits : choices) {
+      std::vector<std::size_t> free_index;
+      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+        const auto r = std::find(at.begin(), at.end(), j);
+        if (r == at.end() || ((bits >> (r - at.begin())) & 1u)) free_index.push_back(j);
+      }
+      out.push_back(make_subfamily(spec, free_index, fixed));
+    }
+    out.push_back(spec);  // the whole family last: kept only where it predicts the unseen rests better
+    return out;
   }
+  if (spec.mechanisms.empty()) return {spec};
+  std::vector<double> null_values;
+  for (const EffectParameter& p : spec.parameters) null_values.push_back(p.null_value);
+  std::vector<EffectSpec> out;
+  for (const std::vector<std::string>& group : spec.mechanisms) {
+    std::vector<std::size_t> free_index;
+    for (const std::string& name : group) free_index.push_back(parameter_index(spec, name));
+    std::sort(free_index.begin(), free_index.end());
+    out.push_back(make_subfamily(spec, free_index, null_values));
+  }
+  out.push_back(spec);
   return out;
 }
 
@@ -377,8 +402,8 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   for (std::size_t f = 0; f < plan.folds.size(); ++f) null_energy += fold_energy(recs, plan.folds[f], null_pred[f], o.segmentation);
 
   // Each candidate: same procedure from stage A with its parameters free, or with those of each
-  // sub-family the fitting data identify (identifiable_subfamilies: as many rest-level parameters
-  // free as the folds' fitting data hold distinct rests). The candidate x sub-family x fold fits
+  // sub-family (candidate_subfamilies: each mechanism alone and the whole family; as many rest-level
+  // parameters free as the folds' fitting data hold distinct rests). The candidate x sub-family x fold fits
   // are independent and run in parallel.
   int rest_levels = 3;
   std::vector<double> fold_rests;  // held forces of fold 1's fitting rests, for the note
@@ -390,7 +415,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   std::vector<std::vector<EffectSpec>> subfamilies(todo.size());
   std::vector<std::pair<std::size_t, std::size_t>> items;  // (candidate, sub-family)
   for (std::size_t c = 0; c < todo.size(); ++c) {
-    subfamilies[c] = identifiable_subfamilies(*todo[c], rest_levels);
+    subfamilies[c] = candidate_subfamilies(*todo[c], rest_levels);
     for (std::size_t v = 0; v < subfamilies[c].size(); ++v) items.emplace_back(c, v);
   }
   std::vector<ModelState> item_fit(items.size() * n_folds);
@@ -417,26 +442,38 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
           n += static_cast<double>(p.end - p.begin);
         }
       }
-      tried.emplace_back(n > 0 ? std::sqrt(sse / n) : 0.0, spec.subfamily);
-      // Earlier sub-families (ratio first) are kept unless a later one is better by more than 1 %:
-      // two rests of one sign do not tell a share of Fc from a set level.
+      std::string free_names;
+      for (const EffectParameter& p : spec.parameters) free_names += (free_names.empty() ? "" : " ") + p.name;
+      tried.emplace_back(n > 0 ? std::sqrt(sse / n) : 0.0, spec.subfamily.empty() ? "whole family" : free_names);
+      // Earlier sub-families (single mechanisms before the whole family; ratio first) are kept
+      // unless a later one is better by more than 1 %: two rests of one sign do not tell a share of
+      // Fc from a set level, and more parameters are not more physics when they predict no better.
       if (sse < 0.99 * best_sse || !std::isfinite(best_sse)) {
         best_sse = sse;
         best_rmse = tried.back().first;
         chosen_item[c] = it;
       }
     }
+    const EffectSpec& chosen = subfamilies[c][items[chosen_item[c]].second];
     if (tried.size() > 1) {
-      std::string held, others;
-      for (double h : fold_rests) held += (held.empty() ? "" : ", ") + format_significant(h, 3) + " kip";
-      const EffectSpec& chosen = subfamilies[c][items[chosen_item[c]].second];
-      for (const auto& t : tried)
-        if (t.second != chosen.subfamily) others += (others.empty() ? "" : "; ") + t.second + " " + format_significant(t.first, 3) + " kip";
-      out.notes.push_back(todo[c]->name + ": the fitting data of each fold hold " + std::to_string(rest_levels) +
-                          " distinct rest level(s) (fold 1: held " + (held.empty() ? "none" : held) + "), too few to identify all of " +
-                          std::to_string(todo[c]->rest_level.size()) + " rest-level parameters; kept on the held-out parts: " +
-                          chosen.subfamily + " (held-out RMSE " + format_significant(best_rmse, 3) +
-                          " kip) over " + others);
+      std::string others;
+      std::size_t k = 0;
+      for (std::size_t it = 0; it < items.size(); ++it) {
+        if (items[it].first != c) continue;
+        if (it != chosen_item[c]) others += (others.empty() ? "" : "; ") + tried[k].second + " " + format_significant(tried[k].first, 3) + " kip";
+        ++k;
+      }
+      std::string why;
+      if (!todo[c]->rest_level.empty() && rest_levels > 0 && static_cast<std::size_t>(rest_levels) < todo[c]->rest_level.size()) {
+        std::string held;
+        for (double h : fold_rests) held += (held.empty() ? "" : ", ") + format_significant(h, 3) + " kip";
+        why = "the fitting data of each fold hold " + std::to_string(rest_levels) + " distinct rest level(s) (fold 1: held " +
+              (held.empty() ? "none" : held) + "), too few to identify all of " + std::to_string(todo[c]->rest_level.size()) +
+              " rest-level parameters; ";
+      }
+      out.notes.push_back(todo[c]->name + ": " + why + "kept on the held-out parts: " +
+                          (chosen.subfamily.empty() ? std::string("whole family") : chosen.subfamily) + " (held-out RMSE " +
+                          format_significant(best_rmse, 3) + " kip) over (free parameters) " + others);
     }
   }
   std::vector<ModelState> cand_fit(todo.size() * n_folds);

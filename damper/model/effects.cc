@@ -357,6 +357,23 @@ std::vector<EffectSpec> build_library() {
   sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
   for (EffectSpec& s : lib)
     if (s.name == "residual_static") s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}};
+  // Physical mechanisms of each family (EffectSpec::mechanisms).
+  auto mech = [&lib](const std::string& name, std::vector<std::vector<std::string>> groups) {
+    for (EffectSpec& s : lib)
+      if (s.name == name) s.mechanisms = std::move(groups);
+  };
+  mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
+  mech("asymmetry", {{"level"}, {"stiffness"}, {"motion_stiffness"}, {"stribeck_speed", "viscous"}});
+  mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
+                    {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
+                    {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
+  mech("pretension", {{"fs_share", "instant_share"}, {"clamp_exponent"}, {"wear_per_kip_in", "wear_saturation_kip_in"}});
+  mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
+                           {"band_force_share"},
+                           {"band_spring_kip_per_in"}});
+  mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
+                            {"elastic_unloading", "breakaway_ratio"},       // elasto-plastic pre-sliding
+                            {"slow_share", "slow_stiffness_ratio"}});       // two-stage contact
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

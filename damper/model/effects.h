@@ -291,9 +291,16 @@ struct EffectSpec {
   /// while it is not free (residual_static's rest level: ratio 0, relaxed_share 1, offset_kip 0).
   /// One rest fixes only where the held force settles; ρ, m and f_o move it along a valley of equal
   /// fits. diagnose frees at most as many of them as the fitting data hold distinct rests and picks
-  /// which by the held-out score (diagnose_select.h, identifiable_subfamilies). Empty elsewhere.
+  /// which by the held-out score (diagnose_select.h, candidate_subfamilies). Empty elsewhere.
   std::vector<std::pair<std::string, double>> rest_level;
-  /// Set on a sub-family made by identifiable_subfamilies: "ratio free; relaxed_share=1 offset_kip=0
+  /// The family's physical mechanisms, each a group of its parameters (self_energizing: the drum
+  /// rotation terms, the self-servo, the band spring). diagnose fits each mechanism alone (the other
+  /// parameters at their null values) beside the whole family and keeps, on the held-out parts, the
+  /// one that predicts unseen data best: a whole family fitted on few records spends its freedom on
+  /// the fitting records, and a narrower family of another effect then wins on held-out data
+  /// (diagnose_select.h, candidate_subfamilies). Empty: the whole family only.
+  std::vector<std::vector<std::string>> mechanisms;
+  /// Set on a sub-family made by candidate_subfamilies: "ratio free; relaxed_share=1 offset_kip=0
   /// fixed" (its `parameters` are the free ones; set/get map them into the whole family).
   std::string subfamily;
 };

@@ -277,14 +277,17 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
   EXPECT_EQ(distinct_rest_levels({2.0, 1.0, -1.5}), 3);
   const EffectSpec& rs = effect_spec("residual_static");
   ASSERT_EQ(rs.parameters.size(), 4u);
-  EXPECT_EQ(identifiable_subfamilies(rs, 0).size(), 1u);  // no rest: the whole family, as before
-  EXPECT_EQ(identifiable_subfamilies(rs, 3).front().parameters.size(), 4u);
-  EXPECT_EQ(identifiable_subfamilies(effect_spec("backlash"), 1).front().parameters.size(),
+  EXPECT_EQ(candidate_subfamilies(rs, 0).size(), 1u);  // no rest: the whole family, as before
+  EXPECT_EQ(candidate_subfamilies(rs, 3).front().parameters.size(), 4u);
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).front().parameters.size(),
             effect_spec("backlash").parameters.size());
   for (int levels : {1, 2}) {
-    const std::vector<EffectSpec> subs = identifiable_subfamilies(rs, levels);
-    ASSERT_EQ(subs.size(), 3u) << levels;  // 3 choose 1, 3 choose 2
+    std::vector<EffectSpec> subs = candidate_subfamilies(rs, levels);
+    ASSERT_EQ(subs.size(), 4u) << levels;  // 3 choose 1 or 3 choose 2, then the whole family
     EXPECT_EQ(subs.front().subfamily.rfind("ratio", 0), 0u) << subs.front().subfamily;  // ratio first
+    EXPECT_TRUE(subs.back().subfamily.empty());
+    EXPECT_EQ(subs.back().parameters.size(), 4u);
+    subs.pop_back();
     for (const EffectSpec& sub : subs) {
       ASSERT_EQ(sub.parameters.size(), static_cast<std::size_t>(1 + levels)) << sub.subfamily;
       // set() puts the free values in their places and the fixed ones (ratio 0, relaxed_share 1,
@@ -310,6 +313,39 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
       EXPECT_EQ(k, sub.parameters.size()) << sub.subfamily;
     }
   }
+}
+
+// Each mechanism of a family alone, the other parameters at their null values, then the whole
+// family: a mechanism at its null value is the whole family's null (the model without the effect).
+TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullValues) {
+  for (const EffectSpec& spec : effect_library()) {
+    const std::vector<EffectSpec> subs = candidate_subfamilies(spec, 0);
+    ASSERT_EQ(subs.size(), spec.mechanisms.size() + 1) << spec.name;
+    EXPECT_EQ(subs.back().parameters.size(), spec.parameters.size()) << spec.name;
+    std::size_t covered = 0;
+    for (std::size_t m = 0; m < spec.mechanisms.size(); ++m) {
+      const EffectSpec& sub = subs[m];
+      ASSERT_EQ(sub.parameters.size(), spec.mechanisms[m].size()) << sub.subfamily;
+      covered += sub.parameters.size();
+      std::vector<double> theta;
+      for (const EffectParameter& p : sub.parameters) theta.push_back(0.5 * (p.lo + p.hi));
+      ModelEffects e;
+      sub.set(e, theta);
+      const std::vector<double> all = spec.get(e);
+      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+        const auto it = std::find_if(sub.parameters.begin(), sub.parameters.end(),
+                                     [&](const EffectParameter& p) { return p.name == spec.parameters[j].name; });
+        const double want = it == sub.parameters.end() ? spec.parameters[j].null_value
+                                                       : theta[static_cast<std::size_t>(it - sub.parameters.begin())];
+        EXPECT_DOUBLE_EQ(all[j], want) << sub.subfamily << " " << spec.parameters[j].name;
+      }
+    }
+    if (!spec.mechanisms.empty()) {
+      EXPECT_EQ(covered, spec.parameters.size()) << spec.name << ": every parameter belongs to one mechanism";
+    }
+  }
+  EXPECT_EQ(candidate_subfamilies(effect_spec("self_energizing"), 0).size(), 4u);
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 1u);
 }
 
 // A residual static force (rest level 0.8 Fc) on the two benchmark drives, which stop holding
