@@ -54,6 +54,12 @@ BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const Diagn
   IdentificationOptions io = o.base_identification;
   io.t0_s = r.test.time_s.front();
   io.t1_s = passive_window_end_s(r, o);
+  const std::string obstacle = window_does_not_identify(r.test, b, io);
+  if (!obstacle.empty()) {  // e.g. the actuators move from the start: the model file's LuGre
+    if (window_rmse) *window_rmse = 0.0;
+    if (not_identified) *not_identified = obstacle;
+    return b;
+  }
   const IdentificationResult id = identify_lugre(r.test, b, io);
   if (window_rmse) *window_rmse = id.residual.rmse_kip;
   if (not_identified && !id.identified) *not_identified = id.note;

@@ -62,6 +62,40 @@ DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_
   return e;
 }
 
+std::string window_does_not_identify(const BrfdTest& test, const BrfdParams& start, const IdentificationOptions& opt) {
+  const std::size_t begin = index_at_time(test, opt.t0_s);
+  const std::size_t end = std::isfinite(opt.t1_s) ? index_at_time(test, opt.t1_s) : test.size();
+  std::ostringstream o;
+  o << std::setprecision(3);
+  if (end <= begin || end - begin < 100) {
+    o << test.path << ": the identification window [" << opt.t0_s << ", " << opt.t1_s << ") s holds "
+      << (end > begin ? end - begin : 0) << " samples (need at least 100)";
+    return o.str();
+  }
+  const double t0 = test.time_s[begin];
+  const double t1 = end < test.size() ? test.time_s[end] : test.time_s.back() + test.dt_s;
+  double peak_v = 0.0;
+  for (std::size_t i = begin; i < end; ++i) peak_v = std::max(peak_v, std::abs(test.drum_vel_in_per_s[i]));
+  if (peak_v < 0.05) {
+    o << test.path << ": the drum barely moves in the window " << t0 << "-" << t1 << " s (peak |v| " << peak_v
+      << " in/s < 0.05): it does not identify the LuGre parameters";
+    return o.str();
+  }
+  // Does the window identify anything? Both directions must slide past the pre-sliding range.
+  const DrumExcursion ex = drum_excursion(test, begin, end);
+  const LugreParams& g0 = start.lugre;
+  const double need_fwd = opt.min_excursion_presliding * g0.fc_fwd_kip / g0.sigma0_kip_per_in;
+  const double need_bwd = opt.min_excursion_presliding * g0.fc_bwd_kip / g0.sigma0_kip_per_in;
+  if (ex.forward_in < need_fwd || ex.backward_in < need_bwd) {
+    o << test.path << ": the window " << t0 << "-" << t1
+      << " s does not identify the LuGre parameters: the drum's largest excursion there is " << ex.forward_in
+      << " in forward and " << ex.backward_in << " in backward, and sliding past the pre-sliding range needs "
+      << need_fwd << " and " << need_bwd << " in (" << opt.min_excursion_presliding << " Fc/sigma0)";
+    return o.str();
+  }
+  return "";
+}
+
 IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
                                     const IdentificationOptions& opt) {
   const std::size_t begin = index_at_time(test, opt.t0_s);
@@ -72,29 +106,12 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
       << ") s holds " << (end > begin ? end - begin : 0) << " samples (need at least 100)";
     throw std::invalid_argument(o.str());
   }
-  double peak_v = 0.0;
-  for (std::size_t i = begin; i < end; ++i) peak_v = std::max(peak_v, std::abs(test.drum_vel_in_per_s[i]));
-  if (peak_v < 0.05) {
-    throw std::invalid_argument(test.path + ": the drum barely moves in the identification window "
-                                "(peak |v| < 0.05 in/s): nothing to identify");
-  }
-
-  // Does the window identify anything? Both directions must slide past the pre-sliding range.
-  const DrumExcursion ex = drum_excursion(test, begin, end);
-  const LugreParams& g0 = start.lugre;
-  const double need_fwd = opt.min_excursion_presliding * g0.fc_fwd_kip / g0.sigma0_kip_per_in;
-  const double need_bwd = opt.min_excursion_presliding * g0.fc_bwd_kip / g0.sigma0_kip_per_in;
-  if (ex.forward_in < need_fwd || ex.backward_in < need_bwd) {
+  const std::string obstacle = window_does_not_identify(test, start, opt);
+  if (!obstacle.empty()) {
     IdentificationResult r = result_on_window(start, test, begin, end, opt.replay);
     r.algorithm = "none";
     r.identified = false;
-    std::ostringstream o;
-    o << std::setprecision(3) << test.path << ": the window " << r.t0_s << "-" << r.t1_s
-      << " s does not identify the LuGre parameters: the drum's largest excursion there is " << ex.forward_in
-      << " in forward and " << ex.backward_in << " in backward, and sliding past the pre-sliding range needs "
-      << need_fwd << " and " << need_bwd << " in (" << opt.min_excursion_presliding
-      << " Fc/sigma0): the start parameters are kept";
-    r.note = o.str();
+    r.note = obstacle + ": the start parameters are kept";
     return r;
   }
 

@@ -68,10 +68,18 @@ struct DrumExcursion {
 };
 DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_t end);
 
+/// Why [options.t0_s, options.t1_s) of `test` does not identify the LuGre parameters (empty: it
+/// does): fewer than 100 samples, a drum that barely moves (peak |v| < 0.05 in/s), or one that does
+/// not slide past its pre-sliding range both ways (min_excursion_presliding, with `start`'s Fc/σ0).
+std::string window_does_not_identify(const BrfdTest& test, const BrfdParams& start,
+                                     const IdentificationOptions& options);
+
 /// Fits σ0, σ1, σ2, Fc and Fs per direction and v_s on [t0, t1) of `test`. The semi-active part
 /// of `start` is kept; inside a pre-actuation window the actuators sit at x'_1, x'_2 so Eq. (4)
-/// is b. Throws std::invalid_argument if the window holds fewer than 100 samples or no motion;
-/// keeps the start parameters (identified = false) if the drum does not slide both ways in it.
+/// is b. Throws std::invalid_argument if the window holds fewer than 100 samples; keeps the start
+/// parameters (identified = false, with a note) if the drum barely moves or does not slide both
+/// ways in it (window_does_not_identify). Until 2026-11-26 a drum that barely moved was an error:
+/// an outside author's records whose actuators move from the first second stopped `diagnose`.
 IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
                                     const IdentificationOptions& options);
 

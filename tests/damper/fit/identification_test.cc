@@ -86,6 +86,34 @@ TEST(Identification, KeepsTheStartParametersWhereTheDrumDoesNotSlideBothWays) {
   EXPECT_TRUE(identify_lugre(t, start, o).identified);
 }
 
+// A window in which the drum barely moves (a record whose actuators move from its first second)
+// identifies nothing either: the start parameters are kept with a note, not an error (an outside
+// author's records stopped `diagnose` with "nothing to identify" until 2026-11-26).
+TEST(Identification, KeepsTheStartParametersWhereTheDrumBarelyMoves) {
+  BrfdParams truth;
+  truth.kind = DamperKind::passive_lugre;
+  truth.lugre = {18.0, 0.05, 0.4, 7.0, 4.0, 3.0, 1.6, 1.0};
+  BrfdTest t = synthetic_test(truth, 3.0);
+  for (std::size_t i = 0; i < 1024; ++i) {  // the first second at rest
+    t.drum_disp_in[i] = 0.0;
+    t.drum_vel_in_per_s[i] = 0.0;
+  }
+  BrfdParams start;
+  start.kind = DamperKind::passive_lugre;
+  IdentificationOptions o;
+  o.t0_s = 0.0;
+  o.t1_s = 0.9;
+  const std::string why = window_does_not_identify(t, start, o);
+  EXPECT_NE(why.find("barely moves"), std::string::npos) << why;
+  const IdentificationResult r = identify_lugre(t, start, o);
+  EXPECT_FALSE(r.identified);
+  EXPECT_NE(r.note.find("barely moves"), std::string::npos) << r.note;
+  EXPECT_EQ(r.params.lugre.fc_fwd_kip, start.lugre.fc_fwd_kip);
+  o.t1_s = 0.05;  // 51 samples: an explicit window without data stays an error
+  EXPECT_NE(window_does_not_identify(t, start, o).find("need at least 100"), std::string::npos);
+  EXPECT_THROW(identify_lugre(t, start, o), std::invalid_argument);
+}
+
 TEST(Identification, FitsTheMeasuredCharacterizationTest) {
   const std::string file = std::string(BRFD_SHARED_DIR) +
                            "/data/brfd/characterization/0.5Hz30lbtension1amplitude.json";
