@@ -269,17 +269,19 @@ std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
 std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
-    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0}));
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1}));
     c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
     return c;
   }
-  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1}));
   // A slack band whose lining stays on the drum: the viscous force goes on through the slack.
-  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0}));
-  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0}));
+  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1}));
+  // The grip lost at a reversal (half of it) and taken up over 0.08 in of travel, no slack.
+  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08}));
   c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0}));
   c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
@@ -299,11 +301,13 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0}));
   c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0}));  // a saturating contact, Fc = b N^0.6
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0}));
-  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0}));  // band-force feedback only
-  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0}));   // strong wrap: ~ capstan e^(±κd)
-  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6}));  // band-stretch spring in parallel
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0}));  // band-force feedback only
+  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0}));   // strong wrap: ~ capstan e^(±κd)
+  // Self-servo per kip of band force, the same gain both ways: g (1 + 0.06 |F|).
+  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06}));
+  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0}));  // band-stretch spring in parallel
   c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0}));
   c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0}));
   c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0}));  // a rounder transition than LuGre

@@ -85,10 +85,13 @@ void BrfdModel::reset() {
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
   friction_work_kip_in_ = 0.0;
+  reversal_travel_in_ = kEngagedTravelIn;
+  last_direction_ = 0;
 }
 
 void BrfdModel::set_bristle_in(double z_in) {
   z_in_ = held_z_in_ = z_in;
+  last_direction_ = z_in > 0.0 ? 1 : z_in < 0.0 ? -1 : 0;  // the band loaded by the last motion
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   // The slow element carries the same share of its capacity as the main one: k2 z2 = S(z)/σ0.
   slow_z_in_ = ts && ts->slow_share > 0.0
@@ -192,6 +195,8 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
   if (e.velocity) factor *= rate_factor(speed);
+  if (e.backlash && e.backlash->takeup_dip > 0.0)  // grip lost at the last reversal, taken up with travel
+    factor *= 1.0 - e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in);
   fc *= factor;
   fs *= factor;
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
@@ -269,9 +274,11 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   f.tension = l.tension;
   if (e.self_energizing) f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * in.drum_disp_in;
   if (e.asymmetry) f.motion = forward ? 1.0 + e.asymmetry->motion_stiffness : 1.0 - e.asymmetry->motion_stiffness;
-  if (e.self_energizing && e.self_energizing->band_force_share != 0.0) {
+  if (e.self_energizing && (e.self_energizing->band_force_share != 0.0 || e.self_energizing->band_force_per_kip != 0.0)) {
+    // φ_s = 1 − η + (η/b + χ)|N S(z)|: η relative to the direction's passive b, χ per kip (effects.h).
     f.servo_share = e.self_energizing->band_force_share;
-    f.servo = f.servo_share / std::max(l.passive, 1e-6);
+    f.servo = f.servo_share / std::max(l.passive, 1e-6) + e.self_energizing->band_force_per_kip;
+    f.servo_on = true;
   }
   if (e.residual_static) {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
@@ -292,7 +299,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
 double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   const double band = f.tension * spring_force_kip(z);
   // self_energizing's self-servo: Fc and Fs (so g) follow the force the band carries.
-  const double servo = f.servo != 0.0 ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band), 0.2, 3.0) : 1.0;
+  const double servo = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band), 0.2, 3.0) : 1.0;
   const double y = band / (f.g * servo);  // force ratio
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
@@ -396,6 +403,15 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   }
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
+  if (e.backlash && e.backlash->takeup_dip > 0.0) {
+    // backlash's take-up: a reversal is the speed passing the threshold against the last direction.
+    const int direction = v >= BacklashEffect::kReversalSpeedInPerS ? 1 : v <= -BacklashEffect::kReversalSpeedInPerS ? -1 : 0;
+    if (direction != 0 && direction != last_direction_) {
+      if (last_direction_ != 0) reversal_travel_in_ = 0.0;
+      last_direction_ = direction;
+    }
+    reversal_travel_in_ = std::min(reversal_travel_in_ + speed * dt_s, kEngagedTravelIn);
+  }
   if (e.residual_static) {
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);
     // z_h follows z while the drum moves and holds the state it stopped with: frozen once the rest
@@ -430,7 +446,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
   const bool shaped = e.transition_shape && e.transition_shape->nonlinear();
   const bool soft = e.backlash && (e.backlash->retension_in > 0.0 || e.backlash->release_ratio != 1.0);
-  if (shaped || soft || f.servo != 0.0) {
+  if (shaped || soft || f.servo_on) {
     // Nonlinear bristle law (Dahl exponent, the soft re-tensioning spring, the self-servo): RK4
     // sub-steps, enough to keep h × (largest rate constant) <= 0.25. With α < 1 the rate constant
     // α |y|^(α−1) is largest at small |y|: bounded with |y| >= 0.05.
@@ -438,7 +454,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
     const double band0 = f.tension * spring_force_kip(z_in_);
     const double y0 = std::abs(band0 / f.g);
     const double release = e.backlash ? e.backlash->release_ratio : 1.0;
-    const double servo0 = f.servo != 0.0 ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band0), 0.2, 3.0) : 1.0;
+    const double servo0 = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band0), 0.2, 3.0) : 1.0;
     // The shaped law's slope: its largest value between the step's start and the steady state
     // (slope_to_steady_), or, off that grid, the bound over every |y| below max(1, |y0|).
     double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / (f.g * servo0)) : 1.0;
@@ -452,7 +468,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
       if (dahl != 1.0) slope *= dahl >= 1.0 ? dahl * std::pow(2.0, dahl - 1.0) : dahl * std::pow(0.05, dahl - 1.0);
     }
     // Self-servo: g φ_s with φ_s at the step's start (it changes little over one step), twice.
-    const double servo = f.servo != 0.0 ? 2.0 / servo0 : 1.0;
+    const double servo = f.servo_on ? 2.0 / servo0 : 1.0;
     const double stiff = k * std::max(sp, sn) * slope * servo * 1.5 * release * f.motion + relax;
     const int n = std::clamp(static_cast<int>(std::ceil(stiff * dt_s / 0.25)), 1, 2000);
     const double h = dt_s / n;

@@ -148,8 +148,9 @@ class BrfdModel final : public DamperModel {
   struct Frame {
     double g = 1.0;        // Stribeck function g(v), kip
     double tension = 1.0;  // N_λ
-    double servo = 0.0;    // η / b of self_energizing's band-force feedback, 1/kip (0: none)
+    double servo = 0.0;    // η / b + χ of self_energizing's band-force feedback, 1/kip
     double servo_share = 0.0;  // η
+    bool servo_on = false;     // the self-servo factor φ_s applies
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
     double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
     double band_spring_kip = 0.0;  // self_energizing's k_b d, kip
@@ -176,6 +177,9 @@ class BrfdModel final : public DamperModel {
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in
+  static constexpr double kEngagedTravelIn = 1e3;  ///< s at the start: long past any reversal
+  double reversal_travel_in_ = kEngagedTravelIn;  ///< s of backlash's take-up: drum travel since the last reversal, in
+  int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)
   /// transition_shape's sub-step bound: slope_to_steady_[i] = the largest |d(rate/|v|)/dw| of the

@@ -23,13 +23,16 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   ModelEffects e;
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
-    b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"});
+    b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
+                  "takeup_length_in"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
     x.stiffness_ratio = b.get_double_in("stiffness_ratio", 1.0, 0.01, 100.0);
     x.release_ratio = b.get_double_in("release_ratio", 1.0, 1.0, 1000.0);
     x.slack_viscous_share = b.get_double_in("slack_viscous_share", 0.0, 0.0, 1.0);
+    x.takeup_dip = b.get_double_in("takeup_dip", 0.0, 0.0, 0.95);
+    x.takeup_length_in = b.get_double_in("takeup_length_in", 0.1, 1e-4, 10.0);
     e.backlash = x;
   }
   if (s.has("residual_static")) {
@@ -93,13 +96,14 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
-                  "band_spring_kip_per_in"});
+                  "band_force_per_kip", "band_spring_kip_per_in"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
     x.drum_abs_per_in = p.get_double_in("drum_abs_per_in", 0.0, -5.0, 5.0);
     x.abs_exponent = p.get_double_in("abs_exponent", 1.0, 0.1, 10.0);
     x.band_force_share = p.get_double_in("band_force_share", 0.0, -0.95, 0.95);
+    x.band_force_per_kip = p.get_double_in("band_force_per_kip", 0.0, -0.5, 0.5);
     x.band_spring_kip_per_in = p.get_double_in("band_spring_kip_per_in", 0.0, -20.0, 20.0);
     e.self_energizing = x;
   }
@@ -167,12 +171,15 @@ std::vector<EffectSpec> build_library() {
       "backlash", "band slack after reversal: fast release, force near zero over a drum travel 2*slack, gradual re-tension",
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
       "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
-      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share",
+      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - takeup_dip "
+      "exp(-s/takeup_length)), s = drum travel since the last reversal",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
        {"release_ratio", 1.0, 30.0, 1.0, 4.0, true},
-       {"slack_viscous_share", 0.0, 1.0, 0.0, 0.5, false, true}},
+       {"slack_viscous_share", 0.0, 1.0, 0.0, 0.5, false, true},
+       {"takeup_dip", 0.0, 0.9, 0.0, 0.3, false},
+       {"takeup_length_in", 0.005, 1.0, 0.1, 0.08, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -181,11 +188,13 @@ std::vector<EffectSpec> build_library() {
         b.stiffness_ratio = t[2];
         b.release_ratio = t[3];
         b.slack_viscous_share = t[4];
+        b.takeup_dip = t[5];
+        b.takeup_length_in = t[6];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
         return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
-                                   b.slack_viscous_share};
+                                   b.slack_viscous_share, b.takeup_dip, b.takeup_length_in};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -302,14 +311,15 @@ std::vector<EffectSpec> build_library() {
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
-      "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1), 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
+      "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1) + chi |N S(z)|, 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
       "F += k_b d (band_spring)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true},
        {"band_force_share", -0.6, 0.6, 0.0, 0.2, false},
-       {"band_spring_kip_per_in", -2.0, 2.0, 0.0, 0.3, false}},
+       {"band_spring_kip_per_in", -2.0, 2.0, 0.0, 0.3, false},
+       {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -319,11 +329,12 @@ std::vector<EffectSpec> build_library() {
         p.abs_exponent = t[3];
         p.band_force_share = t[4];
         p.band_spring_kip_per_in = t[5];
+        p.band_force_per_kip = t[6];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
-                                   p.band_force_share, p.band_spring_kip_per_in};
+                                   p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -362,6 +373,8 @@ std::vector<EffectSpec> build_library() {
     for (EffectSpec& s : lib)
       if (s.name == name) s.mechanisms = std::move(groups);
   };
+  mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
+                    {"takeup_dip", "takeup_length_in"}});  // grip lost at a reversal, taken up with travel
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
   mech("asymmetry", {{"level"}, {"stiffness"}, {"motion_stiffness"}, {"stribeck_speed", "viscous"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
@@ -369,7 +382,7 @@ std::vector<EffectSpec> build_library() {
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
   mech("pretension", {{"fs_share", "instant_share"}, {"clamp_exponent"}, {"wear_per_kip_in", "wear_saturation_kip_in"}});
   mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
-                           {"band_force_share"},
+                           {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
                            {"band_spring_kip_per_in"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
                             {"elastic_unloading", "breakaway_ratio"},       // elasto-plastic pre-sliding

@@ -28,6 +28,13 @@
 ///    gap, and with c = 0 their true gap reproduced only a quarter of the record's residual.)
 ///    After a reversal the force falls to ≈ 0, stays there over 2δ of drum travel, then its
 ///    stiffness rises linearly over a further ε of band stretch (ε = 0: the plain dead zone).
+///    Take-up (takeup_dip = a, takeup_length_in = λ; added 2026-11-26: three outside authors wrote
+///    backlash as a loss of grip at each reversal that the band takes up again with travel, with no
+///    dead zone in the band spring): the band tension, and the friction capacity with it, drops by
+///    the share a at a reversal and is taken up over the drum travel s since it:
+///      Fc, Fs × (1 − a e^(−s/λ)),  s = ∫|v| dt since the last reversal;
+///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
+///    start the last direction is the sign of the initial band force and s is large (engaged).
 ///  - residual_static (relaxed_share = m, ratio = ρ, offset_kip = f_o, time_constant_s = τ_r):
 ///    what the band force does while the drum is at rest. When the drum has been at rest
 ///    (low-passed speed s̃ below v_rest) the band force settles from the force it held when it
@@ -112,7 +119,12 @@
 ///    b the passive kinetic friction of the direction: passive steady sliding is unchanged
 ///    (|N S| = b, φ_s = 1); right after a reversal the unloaded band grips less (φ_s = 1 − η), and a
 ///    tension raised by the actuators is amplified, S = (b + ΔFc)(1 − η)/(1 − η (b + ΔFc)/b).
-///    η ≠ 0 makes the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
+///    The same feedback per kip of carried force (band_force_per_kip = χ, 1/kip; added 2026-11-26:
+///    four outside authors wrote the self-servo as g (1 + χ |F_band|), the contact pressure rising
+///    with the band force itself, the same gain in both directions, where η/b differs by the
+///    direction's b, about 2:1 on the BRFD):  φ_s = clamp(1 + η (|N_λ S(z)|/b − 1) + χ |N_λ S(z)|, 0.2, 3);
+///    in steady sliding with η = 0, S = g/(1 − χ g) (Eytelwein-like growth with the level).
+///    η, χ ≠ 0 make the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
 ///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
 ///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
 ///    author's band-stretch spring, which the friction-level terms reach only in steady sliding).
@@ -165,6 +177,10 @@ struct BacklashEffect {
   double stiffness_ratio = 1.0;  ///< k: band stiffness / σ0 (> 0)
   double release_ratio = 1.0;    ///< r >= 1: how much faster the loaded band releases than it loads
   double slack_viscous_share = 0.0;  ///< c: share of the viscous force σ2 v kept while the band is slack, 0..1
+  double takeup_dip = 0.0;        ///< a: share of the friction capacity lost at a reversal, 0..0.95
+  double takeup_length_in = 0.1;  ///< λ: drum travel over which the capacity is taken up again, in (> 0)
+  /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
+  static constexpr double kReversalSpeedInPerS = 0.05;
 };
 /// Residual static force after motion stops (see file comment).
 struct ResidualStaticEffect {
@@ -218,6 +234,7 @@ struct SelfEnergizingEffect {
   double abs_exponent = 1.0;     ///< p of |d|^p (> 0; 1: linear in the rotation)
   double band_force_share = 0.0; ///< η: share of the carried band force fed back into the contact pressure
   double band_spring_kip_per_in = 0.0;  ///< k_b: elastic force of the stretched bands in parallel, F += k_b d
+  double band_force_per_kip = 0.0;  ///< χ: self-servo per kip of carried band force (absolute), 1/kip
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

@@ -671,6 +671,66 @@ TEST(Effects, SelfServoAmplifiesATensionRaisedByTheActuatorsAsItsClosedForm) {
   }
 }
 
+// self_energizing's absolute self-servo χ (band_force_per_kip): g (1 + χ |F|) in the bristle law, so
+// in steady sliding F = g/(1 − χ g), the same χ in both directions whatever each direction's b
+// (η/b, the relative form, differs by b). Closed form at v >> v_s, σ1 = σ2 = 0, passive.
+TEST(Effects, AbsoluteSelfServoGivesTheSameGainPerKipInBothDirections) {
+  BrfdParams p = coulomb_band();
+  ASSERT_NE(p.lugre.fc_fwd_kip, p.lugre.fc_bwd_kip);
+  for (double chi : {-0.08, 0.05, 0.1}) {
+    p.effects.self_energizing = SelfEnergizingEffect{};
+    p.effects.self_energizing->band_force_per_kip = chi;
+    BrfdModel m(p);
+    DamperInput in;
+    for (const double dir : {1.0, -1.0}) {
+      in.drum_vel_in_per_s = 4.0 * dir;
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += in.drum_vel_in_per_s * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      ASSERT_GT(1.0 - chi * g, 1.0 / 3.0);  // inside the clamp of φ_s
+      EXPECT_NEAR(f, dir * g / (1.0 - chi * g), 1e-6 * g) << "chi " << chi << " dir " << dir;
+    }
+  }
+}
+
+// backlash's take-up: after a reversal the friction capacity is g (1 − a e^(−s/λ)), s the drum travel
+// since the reversal; the force follows it once the bristles have slid (travel >> Fc/σ0, here
+// σ0 large), and a first motion in the direction the band was loaded is no reversal.
+TEST(Effects, TakeUpLowersTheGripAfterAReversalAndRestoresItWithTravel) {
+  BrfdParams p = coulomb_band();
+  p.lugre.sigma0_kip_per_in = 2000.0;  // bristle transition ~1e-3 in << λ
+  const double a = 0.6, lambda = 0.08, dt = 1e-4, speed = 2.0;
+  p.effects.backlash = BacklashEffect{};
+  p.effects.backlash->takeup_dip = a;
+  p.effects.backlash->takeup_length_in = lambda;
+  BrfdModel m(p);
+  m.set_bristle_in(m.bristle_for_force(p.lugre.fc_fwd_kip));  // the band loaded forward
+  DamperInput in;
+  in.drum_vel_in_per_s = speed;
+  double f = 0.0;
+  for (int i = 0; i < 500; ++i) f = m.step(in, dt);  // 0.1 in forward: no reversal, full grip
+  EXPECT_NEAR(f, p.lugre.fc_fwd_kip, 1e-6);
+  in.drum_vel_in_per_s = -speed;
+  double travel = 0.0;
+  int checked = 0;
+  for (int i = 0; i < 3000; ++i) {
+    f = m.step(in, dt);
+    travel += speed * dt;
+    if (travel > 0.02 && i % 100 == 0) {
+      const double expected = -p.lugre.fc_bwd_kip * (1.0 - a * std::exp(-travel / lambda));
+      EXPECT_NEAR(f, expected, 0.01 * p.lugre.fc_bwd_kip) << "travel " << travel;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20);
+  // 0.6 in = 7.5 λ: taken up again to within a e^(−7.5) of the grip
+  EXPECT_NEAR(f, -p.lugre.fc_bwd_kip * (1.0 - a * std::exp(-travel / lambda)), 1e-5);
+  EXPECT_LT(std::abs(f + p.lugre.fc_bwd_kip), 1e-3);
+}
+
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
 // F = b N^q, N = Fc/b the tension ratio of Eq. (4) (q = 1: Eq. 4 itself; passive: b whatever q).
 TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
