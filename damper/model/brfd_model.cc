@@ -195,8 +195,13 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
   if (e.velocity) factor *= rate_factor(speed);
-  if (e.backlash && e.backlash->takeup_dip > 0.0)  // grip lost at the last reversal, taken up with travel
-    factor *= 1.0 - e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in);
+  if (e.backlash && e.backlash->takeup_dip > 0.0) {
+    // Grip lost at the last reversal, taken up with travel: the capacity, and the share f of it in
+    // the band force at once (f = 1: the bristle state unchanged, the force scaled; effects.h).
+    const double lost = e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in);
+    factor *= 1.0 - lost;
+    tension *= 1.0 - e.backlash->takeup_force_share * lost;
+  }
   fc *= factor;
   fs *= factor;
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);

@@ -24,7 +24,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
-                  "takeup_length_in"});
+                  "takeup_length_in", "takeup_force_share"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -33,6 +33,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.slack_viscous_share = b.get_double_in("slack_viscous_share", 0.0, 0.0, 1.0);
     x.takeup_dip = b.get_double_in("takeup_dip", 0.0, 0.0, 0.95);
     x.takeup_length_in = b.get_double_in("takeup_length_in", 0.1, 1e-4, 10.0);
+    x.takeup_force_share = b.get_double_in("takeup_force_share", 0.0, 0.0, 1.0);
     e.backlash = x;
   }
   if (s.has("residual_static")) {
@@ -171,15 +172,16 @@ std::vector<EffectSpec> build_library() {
       "backlash", "band slack after reversal: fast release, force near zero over a drum travel 2*slack, gradual re-tension",
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
       "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
-      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - takeup_dip "
-      "exp(-s/takeup_length)), s = drum travel since the last reversal",
+      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - L), N x (1 - "
+      "takeup_force_share L), L = takeup_dip exp(-s/takeup_length), s = drum travel since the last reversal",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
        {"release_ratio", 1.0, 30.0, 1.0, 4.0, true},
        {"slack_viscous_share", 0.0, 1.0, 0.0, 0.5, false, true},
        {"takeup_dip", 0.0, 0.9, 0.0, 0.3, false},
-       {"takeup_length_in", 0.005, 1.0, 0.1, 0.08, true}},
+       {"takeup_length_in", 0.005, 1.0, 0.1, 0.08, true},
+       {"takeup_force_share", 0.0, 1.0, 0.0, 0.5, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -190,11 +192,13 @@ std::vector<EffectSpec> build_library() {
         b.slack_viscous_share = t[4];
         b.takeup_dip = t[5];
         b.takeup_length_in = t[6];
+        b.takeup_force_share = t[7];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
         return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
-                                   b.slack_viscous_share, b.takeup_dip, b.takeup_length_in};
+                                   b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
+                                   b.takeup_force_share};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -374,7 +378,7 @@ std::vector<EffectSpec> build_library() {
       if (s.name == name) s.mechanisms = std::move(groups);
   };
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
-                    {"takeup_dip", "takeup_length_in"}});  // grip lost at a reversal, taken up with travel
+                    {"takeup_dip", "takeup_length_in", "takeup_force_share"}});  // grip lost at a reversal, taken up with travel
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
   mech("asymmetry", {{"level"}, {"stiffness"}, {"motion_stiffness"}, {"stribeck_speed", "viscous"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape

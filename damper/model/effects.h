@@ -32,7 +32,11 @@
 ///    backlash as a loss of grip at each reversal that the band takes up again with travel, with no
 ///    dead zone in the band spring): the band tension, and the friction capacity with it, drops by
 ///    the share a at a reversal and is taken up over the drum travel s since it:
-///      Fc, Fs × (1 − a e^(−s/λ)),  s = ∫|v| dt since the last reversal;
+///      Fc, Fs × (1 − a e^(−s/λ)),  s = ∫|v| dt since the last reversal,
+///    and the band force at once by the share f of it (takeup_force_share = f, like pretension's
+///    λ): N × (1 − f a e^(−s/λ)) — f = 0 the force follows the lower capacity through the bristle
+///    law, f = 1 the bristle state is unchanged and the transmitted force scaled (the slack is in the
+///    band, not at the lining);
 ///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
 ///    start the last direction is the sign of the initial band force and s is large (engaged).
 ///  - residual_static (relaxed_share = m, ratio = ρ, offset_kip = f_o, time_constant_s = τ_r):
@@ -179,6 +183,7 @@ struct BacklashEffect {
   double slack_viscous_share = 0.0;  ///< c: share of the viscous force σ2 v kept while the band is slack, 0..1
   double takeup_dip = 0.0;        ///< a: share of the friction capacity lost at a reversal, 0..0.95
   double takeup_length_in = 0.1;  ///< λ: drum travel over which the capacity is taken up again, in (> 0)
+  double takeup_force_share = 0.0;  ///< f: share of the lost grip that scales the band force at once, 0..1
   /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
   static constexpr double kReversalSpeedInPerS = 0.05;
 };

@@ -731,6 +731,38 @@ TEST(Effects, TakeUpLowersTheGripAfterAReversalAndRestoresItWithTravel) {
   EXPECT_LT(std::abs(f + p.lugre.fc_bwd_kip), 1e-3);
 }
 
+// backlash's take-up with f = 1 (takeup_force_share): the bristle state is that of the model without
+// it and the band force is scaled, F = (1 − a e^(−s/λ)) F_plain (σ1 = σ2 = 0), at any σ0, through a
+// reversal and the re-loading after it.
+TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
+  BrfdParams plain = coulomb_band();
+  BrfdParams p = plain;
+  const double a = 0.5, lambda = 0.05, dt = 1e-3;
+  p.effects.backlash = BacklashEffect{};
+  p.effects.backlash->takeup_dip = a;
+  p.effects.backlash->takeup_length_in = lambda;
+  p.effects.backlash->takeup_force_share = 1.0;
+  BrfdModel m(p), ref(plain);
+  m.set_bristle_in(m.bristle_for_force(1.0));
+  ref.set_bristle_in(ref.bristle_for_force(1.0));
+  DamperInput in;
+  double travel = 1e3, worst = 0.0, deepest = 1.0;
+  int last = 1;
+  for (int i = 0; i < 4000; ++i) {
+    in.drum_vel_in_per_s = 1.5 * std::sin(2.0 * M_PI * 0.5 * i * dt);  // reversals at 1 s, 2 s, 3 s
+    const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
+    if (dir != 0 && dir != last) travel = 0.0;
+    if (dir != 0) last = dir;
+    travel += std::abs(in.drum_vel_in_per_s) * dt;
+    const double scale = 1.0 - a * std::exp(-travel / lambda);
+    const double f = m.step(in, dt), f_plain = ref.step(in, dt);
+    worst = std::max(worst, std::abs(f - scale * f_plain));
+    deepest = std::min(deepest, scale);
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(deepest, 0.6);  // the dip was there
+}
+
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
 // F = b N^q, N = Fc/b the tension ratio of Eq. (4) (q = 1: Eq. 4 itself; passive: b whatever q).
 TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
