@@ -279,7 +279,9 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
   ASSERT_EQ(rs.parameters.size(), 4u);
   EXPECT_EQ(candidate_subfamilies(rs, 0).size(), 1u);  // no rest: the whole family, as before
   EXPECT_EQ(candidate_subfamilies(rs, 3).front().parameters.size(), 4u);
-  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).front().parameters.size(),
+  // A family without a rest level: the rest count changes nothing.
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).size(), candidate_subfamilies(effect_spec("backlash"), 0).size());
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).back().parameters.size(),
             effect_spec("backlash").parameters.size());
   for (int levels : {1, 2}) {
     std::vector<EffectSpec> subs = candidate_subfamilies(rs, levels);
@@ -345,7 +347,7 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     }
   }
   EXPECT_EQ(candidate_subfamilies(effect_spec("self_energizing"), 0).size(), 4u);
-  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 1u);
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 3u);  // slack band, take-up, whole
 }
 
 // model-updated.yaml's LuGre block (identify mode) is fitted only on passive windows that identify
