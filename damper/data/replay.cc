@@ -43,6 +43,7 @@ std::vector<double> replay_force_kip(const BrfdParams& params, const BrfdTest& t
     const double f_max = std::max(g.fs_fwd_kip, g.fs_bwd_kip);
     model.set_bristle_in(model.initial_bristle_for_force(std::clamp(test.force_kip[begin], -f_max, f_max)));
   }
+  model.set_drum_start_in(test.drum_disp_in[0]);  // the bands were tensioned where the record starts
   std::vector<double> f(end - begin);
   f[0] = model.force_kip(model.bristle_in(), input_at(test, begin, params));
   for (std::size_t i = begin + 1; i < end; ++i)

@@ -356,7 +356,7 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
   {
     std::ofstream c = open_out((out / "candidates.csv").string());
     c << "round,effect,params,heldout_rmse_null_kip,heldout_rmse_kip,heldout_gain,excess_share,parts_improved,"
-         "parts_changed,signature_share,confidence,verdict,accepted,params_at_outer_bound\n";
+         "parts_changed,signature_share,confidence,verdict,accepted,params_at_outer_bound,own_time_share,own_residual_share\n";
     for (const CandidateScore& s : result.candidates) {
       std::string params;
       for (std::size_t j = 0; j < s.theta.size(); ++j) params += (j ? " " : "") + s.parameter_names[j] + "=" + format_significant(s.theta[j], 6);
@@ -367,7 +367,7 @@ void write_outputs(const DiagnoseOptions& o, DiagnoseResult& result, std::vector
         << s.signature_share << ',' << s.confidence << ',' << verdict << ',' << (s.accepted ? 1 : 0) << ',';
       const std::vector<std::string> at_bounds = parameters_at_outer_bounds(s);
       for (std::size_t j = 0; j < at_bounds.size(); ++j) c << (j ? "; " : "") << at_bounds[j];
-      c << '\n';
+      c << ',' << s.own_time_share << ',' << s.own_residual_share << '\n';
     }
   }
   {

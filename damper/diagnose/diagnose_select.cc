@@ -5,6 +5,7 @@
 #include "damper/diagnose/diagnose_noise.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iomanip>
 #include <random>
@@ -12,6 +13,18 @@
 #include <stdexcept>
 
 namespace damper {
+
+double signature_density(const CandidateScore& c) {
+  const double s = c.signature_share, t = c.own_time_share;
+  if (t <= 0.0 || s <= 0.0) return 0.0;
+  if (s >= 1.0 || t >= 1.0) return std::numeric_limits<double>::infinity();
+  return (s / t) / ((1.0 - s) / (1.0 - t));
+}
+
+bool signature_holds(const CandidateScore& c, const DiagnoseOptions& o) {
+  return c.signature_share >= o.signature_share ||
+         (c.signature_share >= o.signature_share_floor && signature_density(c) >= o.signature_density);
+}
 
 namespace {
 
@@ -77,6 +90,14 @@ double level_at_stop(const std::vector<double>& l, const Segmentation& seg, doub
   return n ? sum / static_cast<double>(n) : 0.0;
 }
 
+// Sums of the signature over the folds: gain, samples and null residual energy, in the effect's own
+// regimes and in all.
+struct SignatureTally {
+  double own_gain_kip2 = 0.0, gain_kip2 = 0.0;
+  double own_samples = 0.0, samples = 0.0;
+  double own_null_kip2 = 0.0, null_kip2 = 0.0;
+};
+
 // Physics signature: low-frequency held-out gain Σ(l_null² − l_cand²) on the samples of the
 // effect's own regimes (by the drum's state, Segmentation::drum_regime; for effects acting through
 // the actuators also every sample where they move) and on the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0).
@@ -89,7 +110,7 @@ double level_at_stop(const std::vector<double>& l, const Segmentation& seg, doub
 constexpr double kStopLevelS = 0.05;
 
 void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
-                    const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, double own_all[2]) {
+                    const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, SignatureTally& tally) {
   auto has = [&spec](const char* g) { return std::find(spec.regimes.begin(), spec.regimes.end(), g) != spec.regimes.end(); };
   const bool at_rest = has("after_stop"), actuators = has("actuators");
   double own = 0.0, other = 0.0;
@@ -106,7 +127,13 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
     for (std::size_t i = p.begin; i < p.end; ++i) {
       const Regime g = r.seg.regime[i];
       if (g == Regime::after_stop) {
-        if (at_rest) own += (l0[i] - c0) * (l0[i] - c0) - (l1[i] - c1) * (l1[i] - c1);
+        if (at_rest) {
+          own += (l0[i] - c0) * (l0[i] - c0) - (l1[i] - c1) * (l1[i] - c1);
+          tally.own_samples += 1.0;
+          tally.samples += 1.0;
+          tally.own_null_kip2 += (l0[i] - c0) * (l0[i] - c0);
+          tally.null_kip2 += (l0[i] - c0) * (l0[i] - c0);
+        }
         continue;
       }
       // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
@@ -117,10 +144,16 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       const bool reloading = !r.seg.band_reloading.empty() && r.seg.band_reloading[i] && has("band_reloading");
       const bool mine = moving || reloading || has(to_string(drum).c_str());
       (mine ? own : other) += l0[i] * l0[i] - l1[i] * l1[i];
+      tally.samples += 1.0;
+      tally.null_kip2 += l0[i] * l0[i];
+      if (mine) {
+        tally.own_samples += 1.0;
+        tally.own_null_kip2 += l0[i] * l0[i];
+      }
     }
   }
-  own_all[0] += std::max(own, 0.0);
-  own_all[1] += std::max(own, 0.0) + std::max(other, 0.0);
+  tally.own_gain_kip2 += std::max(own, 0.0);
+  tally.gain_kip2 += std::max(own, 0.0) + std::max(other, 0.0);
 }
 
 bool at_null(const EffectSpec& spec, const ModelEffects& e) {
@@ -189,8 +222,10 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
       return g;
     }
   }
-  if (check_signature && c.signature_share < o.signature_share) {
-    g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes";
+  if (check_signature && !signature_holds(c, o)) {
+    g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes (" +
+            format_significant(100.0 * c.own_time_share, 2) + "% of the samples; density " +
+            format_significant(signature_density(c), 2) + " < " + format_significant(o.signature_density, 2) + ")";
     return g;
   }
   g.passes = true;
@@ -503,7 +538,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
       if (!free) s.fixed_parameters.push_back(p.name);
     }
     double sse0 = 0.0, sse1 = 0.0, n = 0.0;
-    double own_all[2] = {0.0, 0.0};
+    SignatureTally tally;
     for (std::size_t f = 0; f < plan.folds.size(); ++f) {
       const Fold& fold = plan.folds[f];
       const ModelState& fit = cand_fit[c * n_folds + f];
@@ -528,14 +563,16 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
         n += static_cast<double>(p.end - p.begin);
       }
       s.heldout_energy += fold_energy(recs, fold, fp, o.segmentation);
-      signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, own_all);
+      signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, tally);
       cand_pred[c].push_back(std::move(fp));
       if (f == 0) s.theta = whole.present(fit.effects) ? whole.get(fit.effects) : std::vector<double>{};  // fold 1's
     }
     s.heldout_rmse_null_kip = n > 0 ? std::sqrt(sse0 / n) : 0.0;
     s.heldout_rmse_kip = n > 0 ? std::sqrt(sse1 / n) : 0.0;
     s.parts_total = static_cast<int>(s.part_gain_kip2.size());
-    s.signature_share = own_all[1] > 0.0 ? own_all[0] / own_all[1] : 0.0;
+    s.signature_share = tally.gain_kip2 > 0.0 ? tally.own_gain_kip2 / tally.gain_kip2 : 0.0;
+    s.own_time_share = tally.samples > 0.0 ? tally.own_samples / tally.samples : 0.0;
+    s.own_residual_share = tally.null_kip2 > 0.0 ? tally.own_null_kip2 / tally.null_kip2 : 0.0;
     const GateResult g = gates(s, std::vector<int>(s.part_gain_kip2.size(), 1), part_record, recs.size(), sigma2, o, true);
     s.heldout_gain = g.gain_share;
     s.excess_share = g.excess_share;

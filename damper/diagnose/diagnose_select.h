@@ -17,7 +17,8 @@
 ///   (2) it improves >= consistency of the parts it changes (|g_p| > 2 % of SSE_null,p), and with
 ///       several records no record gets materially worse;
 ///   (3) >= signature_share of its held-out low-frequency gain sits in its own regimes
-///       (EffectSpec::regimes);
+///       (EffectSpec::regimes), or its gain per sample there is >= signature_density times that
+///       elsewhere (signature_holds);
 /// the winner is the passing candidate with the largest Σg; it is named only when it removes at
 /// least min_explained_share of the excess (most of what is missing, not a part). Its confidence is the share of
 /// bootstrap resamples of the parts (with replacement) in which it is still the winner among the
@@ -75,6 +76,17 @@ struct RoundOutcome {
 /// for more than the family allows: the shape may be another effect's or stronger than the library
 /// reaches, and the fitted values are not identified. Reported with the evidence, not a gate.
 std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c);
+
+/// How concentrated a candidate's held-out gain is in its own regimes: the gain per sample there
+/// over the gain per sample elsewhere, (s/t)/((1 − s)/(1 − t)) with s its signature_share and t its
+/// own_time_share (1: spread evenly, as a change everywhere gives; 0 when its regimes hold no sample
+/// or none of its gain; infinite when all of it).
+double signature_density(const CandidateScore& c);
+
+/// Gate (3): the signature holds when at least options.signature_share of the gain sits in the
+/// effect's own regimes, or at least options.signature_share_floor of it with a density there of at
+/// least options.signature_density.
+bool signature_holds(const CandidateScore& c, const DiagnoseOptions& o);
 
 /// The rests in the fitting samples of `mask`: for each record whose final rest
 /// (Segmentation::rest_begin) the mask covers, the measured force held when the drum stopped (mean

@@ -87,6 +87,12 @@ void BrfdModel::reset() {
   friction_work_kip_in_ = 0.0;
   reversal_travel_in_ = kEngagedTravelIn;
   last_direction_ = 0;
+  drum_start_in_.reset();
+}
+
+double BrfdModel::rotation_in(const DamperInput& in) const {
+  const SelfEnergizingEffect& se = *params_.effects.self_energizing;
+  return in.drum_disp_in - se.drum_start_share * drum_start_in_.value_or(in.drum_disp_in);
 }
 
 void BrfdModel::set_bristle_in(double z_in) {
@@ -189,9 +195,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   }
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
-    const double ad = std::abs(in.drum_disp_in);
+    const double d = rotation_in(in);
+    const double ad = std::abs(d);
     const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
-    factor *= std::max(0.05, 1.0 + kappa * in.drum_disp_in + e.self_energizing->drum_abs_per_in * grow);
+    factor *= std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
   }
   if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
   if (e.velocity) factor *= rate_factor(speed);
@@ -277,7 +284,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   f.tension = l.tension;
-  if (e.self_energizing) f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * in.drum_disp_in;
+  if (e.self_energizing) {
+    const double d = rotation_in(in);  // each band stretches in its own direction of rotation
+    f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * (d < 0.0 ? e.self_energizing->band_spring_neg_ratio : 1.0) * d;
+  }
   if (e.asymmetry) f.motion = forward ? 1.0 + e.asymmetry->motion_stiffness : 1.0 - e.asymmetry->motion_stiffness;
   if (e.self_energizing && (e.self_energizing->band_force_share != 0.0 || e.self_energizing->band_force_per_kip != 0.0)) {
     // φ_s = 1 − η + (η/b + χ)|N S(z)|: η relative to the direction's passive b, χ per kip (effects.h).
@@ -381,6 +391,7 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
 
 double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
   const ModelEffects& e = params_.effects;
+  if (!drum_start_in_) drum_start_in_ = in.drum_disp_in;
   if (e.actuator_lag) {
     const double tau = e.actuator_lag->time_constant_s;
     const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <string>
+#include <optional>
 #include <vector>
 
 namespace damper {
@@ -121,6 +122,9 @@ class BrfdModel final : public DamperModel {
   /// Sets the bristle state (and the states that follow it: the held state at rest, the slow
   /// contact element of transition_shape at the same force ratio).
   void set_bristle_in(double z_in);
+  /// The drum displacement the run starts from (self_energizing's drum_start_share counts the
+  /// rotation from it); without a call, the displacement of the first step.
+  void set_drum_start_in(double d_in) { drum_start_in_ = d_in; }
   /// z = 0 and the effect states back to their initial values.
   void reset() override;
 
@@ -180,6 +184,8 @@ class BrfdModel final : public DamperModel {
   static constexpr double kEngagedTravelIn = 1e3;  ///< s at the start: long past any reversal
   double reversal_travel_in_ = kEngagedTravelIn;  ///< s of backlash's take-up: drum travel since the last reversal, in
   int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)
+  std::optional<double> drum_start_in_;   ///< drum displacement at the start of the run (first step), in
+  double rotation_in(const DamperInput& in) const;  ///< d of self_energizing (its drum_start_share)
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)
   /// transition_shape's sub-step bound: slope_to_steady_[i] = the largest |d(rate/|v|)/dw| of the

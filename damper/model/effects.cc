@@ -97,7 +97,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
-                  "band_force_per_kip", "band_spring_kip_per_in"});
+                  "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -106,6 +106,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_force_share = p.get_double_in("band_force_share", 0.0, -0.95, 0.95);
     x.band_force_per_kip = p.get_double_in("band_force_per_kip", 0.0, -0.5, 0.5);
     x.band_spring_kip_per_in = p.get_double_in("band_spring_kip_per_in", 0.0, -20.0, 20.0);
+    x.drum_start_share = p.get_double_in("drum_start_share", 0.0, 0.0, 1.0);
+    x.band_spring_neg_ratio = p.get_double_in("band_spring_neg_ratio", 1.0, 0.0, 10.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -316,14 +318,16 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1) + chi |N S(z)|, 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
-      "F += k_b d (band_spring)",
+      "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"abs_exponent", 0.5, 4.0, 1.0, 2.0, true},
        {"band_force_share", -0.6, 0.6, 0.0, 0.2, false},
        {"band_spring_kip_per_in", -2.0, 2.0, 0.0, 0.3, false},
-       {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false}},
+       {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false},
+       {"drum_start_share", 0.0, 1.0, 0.0, 1.0, false},
+       {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -334,11 +338,14 @@ std::vector<EffectSpec> build_library() {
         p.band_force_share = t[4];
         p.band_spring_kip_per_in = t[5];
         p.band_force_per_kip = t[6];
+        p.drum_start_share = t[7];
+        p.band_spring_neg_ratio = t[8];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
-                                   p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip};
+                                   p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
+                                   p.drum_start_share, p.band_spring_neg_ratio};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -385,9 +392,9 @@ std::vector<EffectSpec> build_library() {
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
   mech("pretension", {{"fs_share", "instant_share"}, {"clamp_exponent"}, {"wear_per_kip_in", "wear_saturation_kip_in"}});
-  mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
+  mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
-                           {"band_spring_kip_per_in"}});
+                           {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
                             {"elastic_unloading", "breakaway_ratio"},       // elasto-plastic pre-sliding
                             {"slow_share", "slow_stiffness_ratio"}});       // two-stage contact

@@ -132,6 +132,14 @@
 ///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
 ///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
 ///    author's band-stretch spring, which the friction-level terms reach only in steady sliding).
+///    Where the rotation d counts from (drum_start_share = r, added in the seventh session): d is the
+///    drum displacement minus r × its value at the start of the run (r = 1: the rotation since the
+///    bands were tensioned, at rest where the run started — the same convention as Eq. (4)'s x'_k,
+///    the actuator positions at the start; r = 0: from the drum's zero). Three of seven outside
+///    authors wrote the capstan wrap from the start position, four from zero; a record cut from the
+///    middle of a test starts far from zero, so a law fitted on one record transfers to another only
+///    with the right origin. And each band stretches in its own direction of rotation: the spring
+///    rate is k_b for d ≥ 0 and ρ k_b for d < 0 (band_spring_neg_ratio = ρ; 1: one linear spring).
 ///  - transition_shape (exponent = α): shape of the stick-to-slip transition (Dahl's exponent). With
 ///    y = N_λ S(z)/g(v) the force ratio, LuGre's Eq. (1) is dz/dt = v − |v| y; here
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation;
@@ -240,6 +248,8 @@ struct SelfEnergizingEffect {
   double band_force_share = 0.0; ///< η: share of the carried band force fed back into the contact pressure
   double band_spring_kip_per_in = 0.0;  ///< k_b: elastic force of the stretched bands in parallel, F += k_b d
   double band_force_per_kip = 0.0;  ///< χ: self-servo per kip of carried band force (absolute), 1/kip
+  double drum_start_share = 0.0;  ///< r in [0, 1]: d = drum displacement − r × its value at the start
+  double band_spring_neg_ratio = 1.0;  ///< ρ: the band spring's rate for d < 0 is ρ k_b (1: one linear spring)
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <set>
 
 namespace damper {
 namespace {
@@ -267,6 +268,31 @@ TEST(DiagnoseSelection, AnOffsetTheDrumStopsWithIsNotAResidualStaticForce) {
   EXPECT_EQ(out.winner, -1);
 }
 
+// Gate (3), the signature: a gain spread evenly over the samples (its share in the effect's regimes
+// equal to their share of the samples) never holds, however large the regimes; a gain concentrated
+// there holds even below half (the refitted model without the effect spreads part of it into
+// sliding: a right backlash of the twelfth blind set, 47 % of its gain in 34 % of the samples); a
+// sliver of gain in a rare regime does not.
+TEST(DiagnoseSelection, SignatureHoldsForAConcentratedGainNotForAnEvenOne) {
+  const DiagnoseOptions o;
+  auto score = [](double share, double time) {
+    CandidateScore c;
+    c.signature_share = share;
+    c.own_time_share = time;
+    return c;
+  };
+  for (const double t : {0.1, 0.25, 0.34, 0.45}) {
+    EXPECT_NEAR(signature_density(score(t, t)), 1.0, 1e-12);
+    EXPECT_FALSE(signature_holds(score(t, t), o)) << "even gain, regimes " << t;
+  }
+  EXPECT_NEAR(signature_density(score(0.47, 0.34)), (0.47 / 0.34) / (0.53 / 0.66), 1e-12);
+  EXPECT_TRUE(signature_holds(score(0.47, 0.34), o));   // density 1.72
+  EXPECT_FALSE(signature_holds(score(0.21, 0.27), o));  // a wrong backlash of the same set: 0.72
+  EXPECT_FALSE(signature_holds(score(0.2, 0.05), o));   // density 4.75, but 80 % of the gain elsewhere
+  EXPECT_TRUE(signature_holds(score(0.6, 0.9), o));     // most of the gain in its regimes
+  EXPECT_FALSE(signature_holds(score(0.4, 0.0), o));    // regimes that hold no sample
+}
+
 // Identifiability of the rest level: the counting of distinct rests and the sub-families it frees.
 TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests) {
   EXPECT_EQ(distinct_rest_levels({}), 0);
@@ -324,11 +350,11 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     const std::vector<EffectSpec> subs = candidate_subfamilies(spec, 0);
     ASSERT_EQ(subs.size(), spec.mechanisms.size() + 1) << spec.name;
     EXPECT_EQ(subs.back().parameters.size(), spec.parameters.size()) << spec.name;
-    std::size_t covered = 0;
+    std::set<std::string> covered;  // a parameter may serve two mechanisms (self_energizing's origin of d)
     for (std::size_t m = 0; m < spec.mechanisms.size(); ++m) {
       const EffectSpec& sub = subs[m];
       ASSERT_EQ(sub.parameters.size(), spec.mechanisms[m].size()) << sub.subfamily;
-      covered += sub.parameters.size();
+      for (const EffectParameter& p : sub.parameters) covered.insert(p.name);
       std::vector<double> theta;
       for (const EffectParameter& p : sub.parameters) theta.push_back(0.5 * (p.lo + p.hi));
       ModelEffects e;
@@ -343,7 +369,7 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
       }
     }
     if (!spec.mechanisms.empty()) {
-      EXPECT_EQ(covered, spec.parameters.size()) << spec.name << ": every parameter belongs to one mechanism";
+      EXPECT_EQ(covered.size(), spec.parameters.size()) << spec.name << ": every parameter belongs to a mechanism";
     }
   }
   EXPECT_EQ(candidate_subfamilies(effect_spec("self_energizing"), 0).size(), 4u);

@@ -312,6 +312,36 @@ TEST(Effects, BandSpringAddsAnElasticForceInParallel) {
   }
 }
 
+// self_energizing's origin of the rotation and the band spring per direction: a run that starts at
+// d0 = 2 in with r = 1 counts d − d0, with r = 0 from the drum's zero. The level g = Fc (1 + κ_f d)
+// grows along the stroke at dg/ds = κ_f Fc per in of travel s; Eq. (1), dz/ds = 1 − σ0 z/g, then has
+// the exact solution z = g/(σ0 + dg/ds) once the start transient has decayed: forward
+// F = σ0 Fc (1 + κ_f d)/(σ0 + κ_f Fc) + k_b d, backward (dg/ds = −κ_b Fb) past the start
+// F = −σ0 Fb (1 + κ_b d)/(σ0 − κ_b Fb) + ρ k_b d.
+TEST(Effects, RotationCountsFromTheStartPositionAndEachBandHasItsOwnSpringRate) {
+  BrfdParams p = coulomb_band();
+  const double kb = 0.7, rho = 0.4, kf = 0.1, kbk = -0.05, d0 = 2.0, dt = 1e-4;
+  for (const double r : {1.0, 0.0}) {
+    p.effects.self_energizing = SelfEnergizingEffect{kf, kbk, 0.0, 1.0, 0.0, kb, 0.0, r, rho};
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_disp_in = d0;
+    for (const double dir : {1.0, -1.0}) {
+      in.drum_vel_in_per_s = dir;
+      for (int i = 0; i < (dir > 0 ? 40000 : 80000); ++i) {  // 4 in forward, 8 in back
+        in.drum_disp_in += dir * dt;
+        m.step(in, dt);
+      }
+      in.drum_disp_in += dir * dt;
+      const double d = in.drum_disp_in - r * d0;
+      const double s0 = p.lugre.sigma0_kip_per_in, fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip;
+      const double level = dir > 0 ? s0 * fc * (1.0 + kf * d) / (s0 + kf * fc) : -s0 * fb * (1.0 + kbk * d) / (s0 - kbk * fb);
+      // 1e-4 kip: the level is held over each step (its change over dt/2, κ Fc v dt/2 ≈ 2e-5 kip)
+      EXPECT_NEAR(m.step(in, dt), level + kb * (d < 0.0 ? rho : 1.0) * d, 1e-4) << "r " << r << " dir " << dir;
+    }
+  }
+}
+
 // transition_shape's slow contact element (two-element Maxwell-slip), σ1 = σ2 = 0, Fs = Fc: from rest
 // at constant v > 0, F = (1 − φ) Fc (1 − e^(−σ0 x/Fc)) + φ Fc (1 − e^(−k2 σ0 x/Fc)); after a reversal
 // from steady sliding each element unloads on its own: F = (1 − φ) [..] + φ [..] with its own length.
