@@ -88,6 +88,8 @@ void BrfdModel::reset() {
   reversal_travel_in_ = kEngagedTravelIn;
   last_direction_ = 0;
   drum_start_in_.reset();
+  play_band_in_.reset();
+  play_drum_in_ = 0.0;
 }
 
 double BrfdModel::rotation_in(const DamperInput& in) const {
@@ -389,9 +391,31 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   return force;
 }
 
-double BrfdModel::step_states_with_effects(const DamperInput& in, double dt_s) {
+double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s) {
   const ModelEffects& e = params_.effects;
-  if (!drum_start_in_) drum_start_in_ = in.drum_disp_in;
+  if (!drum_start_in_) drum_start_in_ = drum.drum_disp_in;
+  DamperInput in = drum;  // what the bands see: the drum, or through backlash's drive-line play
+  if (e.backlash && e.backlash->play_in > 0.0) {
+    const double half = e.backlash->play_in, x = drum.drum_disp_in, v = drum.drum_vel_in_per_s;
+    if (!play_band_in_) {  // in contact on the side of the initial band force
+      play_band_in_ = x - last_direction_ * half;
+      play_drum_in_ = x;
+    }
+    const double travel = std::abs(x - play_drum_in_);
+    play_drum_in_ = x;
+    bool contact = false;
+    if (x - *play_band_in_ >= half) {
+      play_band_in_ = x - half;
+      contact = v > 0.0;
+    } else if (x - *play_band_in_ <= -half) {
+      play_band_in_ = x + half;
+      contact = v < 0.0;
+    }
+    if (!contact) {
+      in.drum_vel_in_per_s = 0.0;
+      if (e.backlash->play_release_per_in > 0.0) z_in_ *= std::exp(-e.backlash->play_release_per_in * travel);
+    }
+  }
   if (e.actuator_lag) {
     const double tau = e.actuator_lag->time_constant_s;
     const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;

@@ -185,6 +185,8 @@ class BrfdModel final : public DamperModel {
   double reversal_travel_in_ = kEngagedTravelIn;  ///< s of backlash's take-up: drum travel since the last reversal, in
   int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)
   std::optional<double> drum_start_in_;   ///< drum displacement at the start of the run (first step), in
+  std::optional<double> play_band_in_;    ///< x_b of backlash's drive-line play: the band's side, in
+  double play_drum_in_ = 0.0;             ///< the drum displacement of the last step (travel in the play), in
   double rotation_in(const DamperInput& in) const;  ///< d of self_energizing (its drum_start_share)
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)

@@ -39,6 +39,16 @@
 ///    band, not at the lining);
 ///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
 ///    start the last direction is the sign of the initial band force and s is large (engaged).
+///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
+///    outside authors wrote backlash as play between the actuator and the drum, sets 12 and 13): the
+///    band sees the drum through a backlash operator of half-width δ_p (Tao & Kokotović 1996; Nordin
+///    & Gutman 2002): its side x_b follows the drum displacement x only in contact, |x − x_b| = δ_p with
+///    the motion closing the gap, and stays put while the drum crosses the 2δ_p of play after a
+///    reversal; the bands, their bristle state and the viscous force see v_b = v in contact and 0 in
+///    the play, so the force is held across the play and the reversal's transition starts 2δ_p late.
+///    While in the play the band unloads by the share e^(−κ_r Δs) per drum travel Δs (κ_r = 0: held;
+///    large: released to about 0, as in the three-stage model of Cao et al. 2015). At the start the
+///    contact is on the side of the initial band force. step() only (force_kip() is the engaged law).
 ///  - residual_static (relaxed_share = m, ratio = ρ, offset_kip = f_o, time_constant_s = τ_r):
 ///    what the band force does while the drum is at rest. When the drum has been at rest
 ///    (low-passed speed s̃ below v_rest) the band force settles from the force it held when it
@@ -192,6 +202,8 @@ struct BacklashEffect {
   double takeup_dip = 0.0;        ///< a: share of the friction capacity lost at a reversal, 0..0.95
   double takeup_length_in = 0.1;  ///< λ: drum travel over which the capacity is taken up again, in (> 0)
   double takeup_force_share = 0.0;  ///< f: share of the lost grip that scales the band force at once, 0..1
+  double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
+  double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
   /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
   static constexpr double kReversalSpeedInPerS = 0.05;
 };

@@ -373,7 +373,7 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     }
   }
   EXPECT_EQ(candidate_subfamilies(effect_spec("self_energizing"), 0).size(), 4u);
-  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 3u);  // slack band, take-up, whole
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 4u);  // slack band, take-up, play, whole
 }
 
 // model-updated.yaml's LuGre block (identify mode) is fitted only on passive windows that identify

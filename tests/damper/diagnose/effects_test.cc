@@ -726,6 +726,50 @@ TEST(Effects, AbsoluteSelfServoGivesTheSameGainPerKipInBothDirections) {
   }
 }
 
+// backlash's drive-line play (a backlash operator of half-width δ between the drum and the bands),
+// Coulomb band: after a reversal from steady forward sliding the band force is held across the
+// 2δ of play, falling only by e^(−κ s) with the drum travel s (κ = 0: held exactly), then the
+// reversal's LuGre transition starts 2δ late: F = −Fb + (F_δ + Fb) e^(−σ0 (s − 2δ)/Fb),
+// F_δ = Fc e^(−2κδ).
+TEST(Effects, DriveLinePlayHoldsTheBandForceAcrossThePlayThenStartsTheReversalLate) {
+  BrfdParams p = coulomb_band();
+  const double fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip, s0 = p.lugre.sigma0_kip_per_in;
+  const double half = 0.05, dt = 1e-5;
+  for (const double kappa : {0.0, 20.0}) {
+    p.effects.backlash = BacklashEffect{};
+    p.effects.backlash->play_in = half;
+    p.effects.backlash->play_release_per_in = kappa;
+    BrfdModel m(p);
+    m.set_bristle_in(m.bristle_for_force(fc));  // steady forward: in contact on the forward side
+    DamperInput in;
+    in.drum_vel_in_per_s = 1.0;
+    double f = 0.0;
+    for (int i = 0; i < 1000; ++i) {  // 0.01 in further forward
+      in.drum_disp_in += dt;
+      f = m.step(in, dt);
+    }
+    EXPECT_NEAR(f, fc, 1e-9);
+    in.drum_vel_in_per_s = -1.0;
+    double worst_gap = 0.0, worst_after = 0.0;
+    for (int i = 1; i <= 60000; ++i) {  // 0.6 in back
+      in.drum_disp_in -= dt;
+      f = m.step(in, dt);
+      const double s = i * dt;
+      if (s < 2.0 * half - 2.0 * dt) {
+        worst_gap = std::max(worst_gap, std::abs(f - fc * std::exp(-kappa * s)));
+      } else if (s > 2.0 * half + 2.0 * dt) {
+        const double f_delta = fc * std::exp(-kappa * 2.0 * half);
+        worst_after = std::max(worst_after, std::abs(f - (-fb + (f_delta + fb) * std::exp(-s0 * (s - 2.0 * half) / fb))));
+      }
+    }
+    // In the play: exact at the samples (κ = 0: the force held); after it, within the force change of
+    // the one step in which contact is made (σ0 |v| dt).
+    EXPECT_LT(worst_gap, 1e-9) << "kappa " << kappa;
+    EXPECT_LT(worst_after, 2.0 * s0 * dt) << "kappa " << kappa;
+    EXPECT_LT(f, -0.99 * fb);  // sliding backward at the end
+  }
+}
+
 // backlash's take-up: after a reversal the friction capacity is g (1 − a e^(−s/λ)), s the drum travel
 // since the reversal; the force follows it once the bristles have slid (travel >> Fc/σ0, here
 // σ0 large), and a first motion in the direction the band was loaded is no reversal.
