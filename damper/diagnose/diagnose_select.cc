@@ -5,9 +5,9 @@
 #include "damper/diagnose/diagnose_noise.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -100,7 +100,8 @@ struct SignatureTally {
 
 // Physics signature: low-frequency held-out gain Σ(l_null² − l_cand²) on the samples of the
 // effect's own regimes (by the drum's state, Segmentation::drum_regime; for effects acting through
-// the actuators also every sample where they move) and on the others; own_all[0] += max(own, 0), own_all[1] += max(own, 0) + max(other, 0).
+// the actuators also every sample where they move) and on the others, added to `tally` per fold as
+// max(own, 0) and max(own, 0) + max(other, 0), with the samples and the null residual energy of each.
 // The final rest: the force the drum stopped with is inherited from the last stroke; only what
 // changes after the stop is the work of an effect acting at rest (relaxation, creep). So the rest
 // counts only for effects acting at rest, and for them only the change of the residual from its
