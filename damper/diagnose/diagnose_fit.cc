@@ -210,7 +210,7 @@ ModelState fit_from(const std::vector<DiagnoseRecord>& recs, const ModelState& s
       const int budget = static_cast<int>(std::lround(settings.effect_evals * std::max(1.0, 0.5 * space.dim())));
       const std::vector<double> u0 = space.unit_of(state.effects, false);
       obj(u0);  // the start (null values, or the previous iteration's) is the reference
-      if (it == 0) {
+      if (it == 0 && settings.scan) {
         // Space-filling scan (the typical values and 6 + 4 dim Halton points, the effects already
         // in the model held at their values) and an axis scan, then LN_BOBYQA from the best point
         // and from the start.
@@ -303,6 +303,30 @@ ModelState fit_model(const std::vector<DiagnoseRecord>& recs, const ModelState& 
   if (!differs) return a;
   ModelState b = fit_from(recs, from_file, space, mask, settings, evaluations);
   return fit_and_passive_sse(recs, b, mask) < fit_and_passive_sse(recs, a, mask) ? b : a;
+}
+
+ModelState refine_from_starts(const std::vector<DiagnoseRecord>& recs, const ModelState& fitted, const FitSpace& space,
+                              const std::vector<std::vector<std::uint8_t>>& mask, const FitSettings& settings,
+                              const std::vector<ModelEffects>& starts, int* evaluations) {
+  if (space.dim() == 0 || starts.empty()) return fitted;
+  const double own = fit_and_passive_sse(recs, fitted, mask);
+  double best = own;
+  ModelState from = fitted;
+  for (const ModelEffects& e : starts) {
+    ModelState s = fitted;
+    s.effects = space.apply(fitted.effects, space.unit_of(e, false));
+    const double v = fit_and_passive_sse(recs, s, mask);
+    if (evaluations) ++*evaluations;
+    if (v < best) {
+      best = v;
+      from = s;
+    }
+  }
+  if (!(best < own)) return fitted;
+  FitSettings no_scan = settings;
+  no_scan.scan = false;
+  ModelState refined = fit_from(recs, from, space, mask, no_scan, evaluations);
+  return fit_and_passive_sse(recs, refined, mask) < own ? refined : fitted;
 }
 
 // LuGre parameters shared by all records, identified on their passive windows with the effects on

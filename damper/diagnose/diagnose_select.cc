@@ -374,9 +374,17 @@ std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_l
   std::vector<EffectSpec> out;
   for (const std::vector<std::string>& group : spec.mechanisms) {
     std::vector<std::size_t> free_index;
-    for (const std::string& name : group) free_index.push_back(parameter_index(spec, name));
+    std::vector<double> values = null_values;
+    for (const std::string& entry : group) {
+      const std::size_t eq = entry.find('=');
+      if (eq == std::string::npos) {
+        free_index.push_back(parameter_index(spec, entry));
+      } else {  // "name=value": held at that value in this mechanism (self_energizing's origin of d)
+        values[parameter_index(spec, entry.substr(0, eq))] = std::stod(entry.substr(eq + 1));
+      }
+    }
     std::sort(free_index.begin(), free_index.end());
-    out.push_back(make_subfamily(spec, free_index, null_values));
+    out.push_back(make_subfamily(spec, free_index, values));
   }
   out.push_back(spec);
   return out;
@@ -461,6 +469,21 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     const EffectSpec* spec = &subfamilies[items[it].first][items[it].second];
     item_fit[i] = fit_model(recs, stage_a[f], FitSpace{{spec}}, plan.folds[f].fit_mask, fs, &item_evals[i]);
   });
+  // Every fold's fit also tried from the other folds' optima of the same sub-family, judged on its
+  // own fitting data (refine_from_starts, diagnose_fit.h): the fits above are independent, so this
+  // runs after them and does not depend on the number of threads.
+  if (n_folds > 1) {
+    std::vector<ModelState> refined(item_fit.size());
+    parallel_for(item_fit.size(), o.threads, [&](std::size_t i) {
+      const std::size_t it = i / n_folds, f = i % n_folds;
+      const EffectSpec* spec = &subfamilies[items[it].first][items[it].second];
+      std::vector<ModelEffects> starts;
+      for (std::size_t g = 0; g < n_folds; ++g)
+        if (g != f && !at_null(*spec, item_fit[it * n_folds + g].effects)) starts.push_back(item_fit[it * n_folds + g].effects);
+      refined[i] = refine_from_starts(recs, item_fit[i], FitSpace{{spec}}, plan.folds[f].fit_mask, fs, starts, &item_evals[i]);
+    });
+    item_fit = std::move(refined);
+  }
   // A candidate with several sub-families keeps the one with the smallest held-out error.
   std::vector<std::size_t> chosen_item(todo.size(), 0);
   for (std::size_t c = 0; c < todo.size(); ++c) {
@@ -674,6 +697,12 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   fa.iterations = added.empty() ? 1 : fs.iterations;
   const ModelState a = fit_model(recs, current, added_space, plan.final_mask, fa);
   out.next = fit_model(recs, a, FitSpace{{&wspec}}, plan.final_mask, fs, &w.evaluations);
+  // ... and from the folds' optima of the winning sub-family (refine_from_starts).
+  std::vector<ModelEffects> fold_optima;
+  for (std::size_t f = 0; f < n_folds; ++f)
+    if (!at_null(wspec, cand_fit[static_cast<std::size_t>(best) * n_folds + f].effects))
+      fold_optima.push_back(cand_fit[static_cast<std::size_t>(best) * n_folds + f].effects);
+  out.next = refine_from_starts(recs, out.next, FitSpace{{&wspec}}, plan.final_mask, fs, fold_optima, &w.evaluations);
   w.theta = effect_spec(w.effect).get(out.next.effects);
   out.winner_spec.push_back(wspec);
   return out;

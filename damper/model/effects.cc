@@ -401,9 +401,16 @@ std::vector<EffectSpec> build_library() {
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
   mech("pretension", {{"fs_share", "instant_share"}, {"clamp_exponent"}, {"wear_per_kip_in", "wear_saturation_kip_in"}});
-  mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share"},
+  // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the
+  // run started (drum_start_share = 1, the convention of Eq. (4)'s x') or at the drum's zero (0).
+  // Each mechanism that counts the rotation is tried from each origin; only the whole family frees
+  // the share (freed within one mechanism, it traded the origin against the exponent and the
+  // levels on the fitting record and transferred badly: docs/diagnose.md, eighth session).
+  mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share=1"},
+                           {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
-                           {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share"}});
+                           {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},
+                           {"band_spring_kip_per_in", "band_spring_neg_ratio"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
                             {"elastic_unloading", "breakaway_ratio"},       // elasto-plastic pre-sliding
                             {"slow_share", "slow_stiffness_ratio"}});       // two-stage contact
