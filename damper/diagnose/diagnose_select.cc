@@ -385,6 +385,8 @@ std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_l
     }
     std::sort(free_index.begin(), free_index.end());
     out.push_back(make_subfamily(spec, free_index, values));
+    const auto own = spec.mechanism_regimes.find(out.size() - 1);
+    if (own != spec.mechanism_regimes.end()) out.back().regimes = own->second;
   }
   out.push_back(spec);
   return out;

@@ -385,9 +385,18 @@ double BrfdModel::step(const DamperInput& in, double dt_s) {
 
 double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const double force = step_states_with_effects(in, dt_s);
-  // Friction work of the step (pretension's wear), with the force at its end.
-  if (params_.effects.pretension && params_.effects.pretension->wear_per_kip_in != 0.0)
-    friction_work_kip_in_ += std::abs(force * in.drum_vel_in_per_s) * dt_s;
+  // Friction work of the step (pretension's wear), with the force at its end; with a recovery rate
+  // k_r (thermal fade) the exact solution of dW/dt = |F v| − k_r W over the step.
+  if (params_.effects.pretension && params_.effects.pretension->wear_per_kip_in != 0.0) {
+    const double power = std::abs(force * in.drum_vel_in_per_s);
+    const double k = params_.effects.pretension->wear_recovery_per_s;
+    if (k > 0.0) {
+      const double decay = std::exp(-k * dt_s);
+      friction_work_kip_in_ = friction_work_kip_in_ * decay + power * (1.0 - decay) / k;
+    } else {
+      friction_work_kip_in_ += power * dt_s;
+    }
+  }
   return force;
 }
 

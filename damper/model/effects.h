@@ -117,6 +117,12 @@
 ///    in, the band's creep or stress relaxation ends; wear_saturation_kip_in = W0, added 2026-11-26
 ///    after an outside author's pre-tension loss saturating over the slip): 1 − w W becomes
 ///    1 − w W0 (1 − e^(−W/W0)), linear for W << W0 (W0 = 0 in a config: linear).
+///    Thermal fade (wear_recovery_per_s = k_r, added in the eighth session): the friction work is
+///    stored as heat in the lining and conducted away, dW/dt = |F v| − k_r W — Newton's cooling of a
+///    lumped lining temperature (Day 2014, Braking of Road Vehicles; Limpert 2011): the friction
+///    fades while the band slides and recovers at rest with time constant 1/k_r, which the wear
+///    (k_r = 0) never does. In steady sliding with F = G (1 − w W):
+///    W(t) = G v (1 − e^(−(w G v + k_r) t)) / (w G v + k_r), tested.
 ///    Clamping law (clamp_exponent = q, added 2026-11-26): friction grows with the normal force as
 ///    a power, Fc = b N^q instead of Eq. (4)'s b N (the increment used everywhere above becomes
 ///    ΔFc = b (N^q − 1)): q < 1 a saturating contact (elastic multi-asperity contact, F ∝ N^(2/3),
@@ -181,6 +187,7 @@
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -250,6 +257,7 @@ struct PretensionEffect {
   double wear_per_kip_in = 0.0;  ///< w: relative pre-tension lost per kip·in of friction work (< 0: gained)
   double clamp_exponent = 1.0;   ///< q: kinetic friction ∝ (tension ratio N)^q (1: Eq. 4's linear increment)
   double wear_saturation_kip_in = 0.0;  ///< W0: friction work over which the loss saturates, kip·in (0: linear)
+  double wear_recovery_per_s = 0.0;     ///< k_r: W recovers at this rate (thermal fade: heat conducted away), 1/s (0: wear)
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {
@@ -344,6 +352,10 @@ struct EffectSpec {
   /// the fitting records, and a narrower family of another effect then wins on held-out data
   /// (diagnose_select.h, candidate_subfamilies). Empty: the whole family only.
   std::vector<std::vector<std::string>> mechanisms;
+  /// Regimes of a mechanism that acts where its family's other mechanisms do not (index into
+  /// `mechanisms`; the family's `regimes` otherwise): self_energizing's band spring, an elastic force
+  /// k_b d in parallel with the friction, acts in every state of the drum, not only while it slides.
+  std::map<std::size_t, std::vector<std::string>> mechanism_regimes;
   /// Set on a sub-family made by candidate_subfamilies: "ratio free; relaxed_share=1 offset_kip=0
   /// fixed" (its `parameters` are the free ones; set/get map them into the whole family).
   std::string subfamily;

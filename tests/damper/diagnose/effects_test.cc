@@ -920,6 +920,47 @@ TEST(Effects, WearLowersTheFrictionAsTheClosedFormOfArchardsLaw) {
   EXPECT_NEAR(f, a * g, 0.01 * g);
 }
 
+// Thermal fade (wear_recovery_per_s = k_r): the friction work is stored as heat and conducted away,
+// dW/dt = |F v| − k_r W. In steady sliding F = G (1 − w W) gives
+// W(t) = G v (1 − e^(−λ t))/λ, λ = w G v + k_r: the friction levels off at G k_r/λ instead of falling
+// on as the wear's does; at rest W decays as e^(−k_r t) and the kinetic friction recovers towards b.
+TEST(Effects, ThermalFadeLevelsOffWhileSlidingAndRecoversAtRest) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double w = 0.006, k = 0.3, v = 10.0 * p.lugre.vs_in_per_s, dt = 1e-4;
+  p.effects.pretension = PretensionEffect{0.0, 0.0, w, 1.0, 0.0, k};
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  BrfdParams no_fade = p;
+  no_fade.effects = ModelEffects{};
+  const BrfdModel base(no_fade);
+  const double g = base.stribeck_kip(in), lambda = w * g * v + k;
+  double f = 0.0, work = 0.0;
+  int checked = 0;
+  for (int i = 1; i <= 200000; ++i) {
+    in.drum_disp_in += v * dt;
+    f = m.step(in, dt);
+    if (i % 50000 == 0) {
+      const double t = i * dt;
+      work = g * v * (1.0 - std::exp(-lambda * t)) / lambda;
+      EXPECT_NEAR(f, g * (1.0 - w * work), 2e-3 * g) << "t " << t << " s";
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 4);
+  EXPECT_NEAR(f, g * k / lambda, 5e-3 * g);  // levelled off, where the wear alone falls on as e^(−w G v t)
+  EXPECT_LT(f, 0.8 * g);
+  // 5 s at rest: W × e^(−1.5); the kinetic friction recovers to b (1 − w W e^(−k t)).
+  in.drum_vel_in_per_s = 0.0;
+  for (int i = 1; i <= 50000; ++i) m.step(in, dt);
+  const double b = base.kinetic_friction_kip(in);
+  EXPECT_NEAR(m.kinetic_friction_kip(in), b * (1.0 - w * work * std::exp(-k * 5.0)), 2e-3 * b);
+  EXPECT_GT(m.kinetic_friction_kip(in), b * (1.0 - w * work) + 0.1 * b);
+}
+
 // Asymmetry by direction of every band property: in steady sliding at speed v the force is the
 // Stribeck curve with the direction's levels and Stribeck speed plus the direction's viscous force,
 // F = ±(1 ± a_F)(Fc + (Fs − Fc) exp(−(v/(v_s(1 ± a_v)))²)) + σ2 (1 ± a_2) v (Eqs. 2-3 in steady state).
