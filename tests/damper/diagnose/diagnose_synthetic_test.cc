@@ -60,6 +60,16 @@ ModelState exact_bases(const std::vector<DiagnoseRecord>& recs) {
   return start;
 }
 
+// RMS error of a model state over every sample of the records (kip).
+double fit_rms_kip(const std::vector<DiagnoseRecord>& recs, const ModelState& m) {
+  double se = 0.0, n = 0.0;
+  for (std::size_t k = 0; k < recs.size(); ++k) {
+    const std::vector<double> f = simulate(m.params(k), recs[k].test);
+    for (std::size_t i = 0; i < f.size(); ++i, n += 1.0) se += std::pow(f[i] - recs[k].test.force_kip[i], 2);
+  }
+  return std::sqrt(se / n);
+}
+
 std::string model_file(const std::string& name) {
   const std::string path = (std::filesystem::temp_directory_path() / ("diagnose_synth_" + name + ".yaml")).string();
   std::ofstream(path) << brfd_params_to_yaml(bench_base_model());
@@ -485,14 +495,7 @@ TEST(DiagnoseSelection, SecondStartFromTheModelFileRecoversAnEffectTheIdentified
   FitSettings fs;
   fs.base = BaseSource::identify;
   const FitSpace space{{&effect_spec("transition_shape")}};
-  auto rms = [&](const ModelState& m) {
-    double se = 0.0, n = 0.0;
-    for (std::size_t k = 0; k < recs.size(); ++k) {
-      const std::vector<double> f = simulate(m.params(k), recs[k].test);
-      for (std::size_t i = 0; i < f.size(); ++i, n += 1.0) se += std::pow(f[i] - recs[k].test.force_kip[i], 2);
-    }
-    return std::sqrt(se / n);
-  };
+  auto rms = [&recs](const ModelState& m) { return fit_rms_kip(recs, m); };
   const ModelState alone = fit_model(recs, identified, space, mask, fs);
   ModelState with_file = identified;
   with_file.file_lugre = bench_base_model().lugre;
@@ -530,14 +533,7 @@ TEST(DiagnoseSelection, AFitContinuesFromAnotherFoldsOptimumOnlyWhereItFitsTheSa
   short_settings.iterations = 1;
   short_settings.scan = false;
   const FitSpace space{{&rotation}};
-  auto rms = [&](const ModelState& m) {
-    double se = 0.0, n = 0.0;
-    for (std::size_t k = 0; k < recs.size(); ++k) {
-      const std::vector<double> f = simulate(m.params(k), recs[k].test);
-      for (std::size_t i = 0; i < f.size(); ++i, n += 1.0) se += std::pow(f[i] - recs[k].test.force_kip[i], 2);
-    }
-    return std::sqrt(se / n);
-  };
+  auto rms = [&recs](const ModelState& m) { return fit_rms_kip(recs, m); };
   const ModelState short_fit = fit_model(recs, exact_bases(recs), space, mask, short_settings);
   ASSERT_GT(rms(short_fit), 1.5 * noise) << "the short fit must end short for this test to mean anything";
 
