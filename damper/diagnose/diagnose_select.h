@@ -111,7 +111,9 @@ int distinct_rest_levels(const std::vector<double>& held_kip);
 ///    held force needs m -> 0 with m f_o fixed) is still reached where its fit predicts the unseen
 ///    rests better (measured: an outside author's fixed shift was named only with it).
 ///  - Otherwise each mechanism (EffectSpec::mechanisms) alone, the other parameters at their null
-///    values, then the whole family; {spec} when it has no mechanisms.
+///    values or, for an entry "name=value" of the mechanism, at that value (self_energizing's origin
+///    of the rotation, drum_start_share=1), with the mechanism's own regimes where it has them
+///    (EffectSpec::mechanism_regimes), then the whole family; {spec} when it has no mechanisms.
 std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_levels);
 
 /// Runs one round of the selection from `current` (effects `added` already added by this run)

@@ -350,7 +350,9 @@ struct EffectSpec {
   /// parameters at their null values) beside the whole family and keeps, on the held-out parts, the
   /// one that predicts unseen data best: a whole family fitted on few records spends its freedom on
   /// the fitting records, and a narrower family of another effect then wins on held-out data
-  /// (diagnose_select.h, candidate_subfamilies). Empty: the whole family only.
+  /// (diagnose_select.h, candidate_subfamilies). Empty: the whole family only. An entry
+  /// "name=value" holds that parameter at the value in this mechanism instead of freeing it (the
+  /// origin of self_energizing's rotation: from the start, drum_start_share=1, or from zero).
   std::vector<std::vector<std::string>> mechanisms;
   /// Regimes of a mechanism that acts where its family's other mechanisms do not (index into
   /// `mechanisms`; the family's `regimes` otherwise): self_energizing's band spring, an elastic force
