@@ -291,10 +291,12 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0}));  // Stribeck speed and σ2 by direction
-  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5}));  // band stiffness by direction of motion
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5}));  // band stiffness by direction of motion
+  // One band differs: the backward band's Stribeck speed × 1.6, the forward band as modelled.
+  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0}));
   c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0}));
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a

@@ -202,7 +202,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
     factor *= std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
   }
-  if (e.asymmetry) factor *= forward ? 1.0 + e.asymmetry->level : 1.0 - e.asymmetry->level;
+  if (e.asymmetry) factor *= e.asymmetry->factor(e.asymmetry->level, forward);
   if (e.velocity) factor *= rate_factor(speed);
   if (e.backlash && e.backlash->takeup_dip > 0.0) {
     // Grip lost at the last reversal, taken up with travel: the capacity, and the share f of it in
@@ -230,7 +230,7 @@ double BrfdModel::stribeck_kip(const DamperInput& in) const {
 double BrfdModel::stiffness(bool positive_z) const {
   const double s0 = params_.lugre.sigma0_kip_per_in * (params_.effects.backlash ? params_.effects.backlash->stiffness_ratio : 1.0);
   if (!params_.effects.asymmetry) return s0;
-  return s0 * (positive_z ? 1.0 + params_.effects.asymmetry->stiffness : 1.0 - params_.effects.asymmetry->stiffness);
+  return s0 * params_.effects.asymmetry->factor(params_.effects.asymmetry->stiffness, positive_z);
 }
 
 double BrfdModel::soft_spring(double over) const {
@@ -278,8 +278,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const bool forward = v >= 0.0;
   const Levels l = levels(in, forward);
   Frame f;
-  const double vs = e.asymmetry ? p.vs_in_per_s * (forward ? 1.0 + e.asymmetry->stribeck_speed
-                                                             : 1.0 - e.asymmetry->stribeck_speed)
+  const double vs = e.asymmetry ? p.vs_in_per_s * e.asymmetry->factor(e.asymmetry->stribeck_speed, forward)
                                 : p.vs_in_per_s;
   const VelocityEffect* ve = e.velocity ? &*e.velocity : nullptr;
   const double r = (ve && ve->stribeck_lag_s > 0.0 ? stribeck_speed_ : std::abs(v)) / vs;
@@ -290,7 +289,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
     const double d = rotation_in(in);  // each band stretches in its own direction of rotation
     f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * (d < 0.0 ? e.self_energizing->band_spring_neg_ratio : 1.0) * d;
   }
-  if (e.asymmetry) f.motion = forward ? 1.0 + e.asymmetry->motion_stiffness : 1.0 - e.asymmetry->motion_stiffness;
+  if (e.asymmetry) f.motion = e.asymmetry->factor(e.asymmetry->motion_stiffness, forward);
   if (e.self_energizing && (e.self_energizing->band_force_share != 0.0 || e.self_energizing->band_force_per_kip != 0.0)) {
     // φ_s = 1 − η + (η/b + χ)|N S(z)|: η relative to the direction's passive b, χ per kip (effects.h).
     f.servo_share = e.self_energizing->band_force_share;
@@ -340,8 +339,7 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
 double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const LugreParams& p = params_.lugre;
   const AsymmetryEffect* as = params_.effects.asymmetry ? &*params_.effects.asymmetry : nullptr;
-  const double sigma2 = as ? p.sigma2_kip_s_per_in * (v >= 0.0 ? 1.0 + as->viscous : 1.0 - as->viscous)
-                           : p.sigma2_kip_s_per_in;
+  const double sigma2 = as ? p.sigma2_kip_s_per_in * as->factor(as->viscous, v >= 0.0) : p.sigma2_kip_s_per_in;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   const double viscous =
       sigma2 + (ve ? ve->added_viscous_kip_s_per_in + ve->quadratic_viscous_kip_s2_per_in2 * std::abs(v) : 0.0);

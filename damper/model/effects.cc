@@ -60,13 +60,14 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("asymmetry")) {
     const common::YamlSection a = s.section("asymmetry");
-    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness"});
+    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
     x.stribeck_speed = a.get_double_in("stribeck_speed", 0.0, -0.95, 0.95);
     x.viscous = a.get_double_in("viscous", 0.0, -0.95, 0.95);
     x.motion_stiffness = a.get_double_in("motion_stiffness", 0.0, -0.95, 0.95);
+    x.forward_share = a.get_double_in("forward_share", 0.5, 0.0, 1.0);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -253,12 +254,14 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force",
       "Fc, Fs x (1 +- level), vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
-      "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward",
+      "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward; "
+      "each +-a split as +2ah forward / -2a(1-h) backward, h = forward_share (0.5: even)",
       {{"level", -0.5, 0.5, 0.0, 0.1, false},
        {"stiffness", -0.8, 0.8, 0.0, 0.3, false},
        {"stribeck_speed", -0.7, 0.7, 0.0, 0.2, false},
        {"viscous", -0.8, 0.8, 0.0, 0.2, false},
-       {"motion_stiffness", -0.8, 0.8, 0.0, 0.3, false}},
+       {"motion_stiffness", -0.8, 0.8, 0.0, 0.3, false},
+       {"forward_share", 0.0, 1.0, 0.5, 1.0, false, true}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -267,10 +270,11 @@ std::vector<EffectSpec> build_library() {
         a.stribeck_speed = t[2];
         a.viscous = t[3];
         a.motion_stiffness = t[4];
+        a.forward_share = t[5];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
-        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous, a.motion_stiffness};
+        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous, a.motion_stiffness, a.forward_share};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and quadratic viscous force, rate-and-state levels",
@@ -401,7 +405,9 @@ std::vector<EffectSpec> build_library() {
                     {"takeup_dip", "takeup_length_in", "takeup_force_share"},  // grip lost at a reversal, taken up with travel
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
-  mech("asymmetry", {{"level"}, {"stiffness"}, {"motion_stiffness"}, {"stribeck_speed", "viscous"}});
+  // Each property by direction with where the difference sits (forward_share: both bands, or one).
+  mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
+                     {"stribeck_speed", "viscous", "forward_share"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state

@@ -80,6 +80,15 @@
 ///      F = σ0 z; steady sliding unchanged. Added 2026-11-26: two outside authors wrote a band
 ///      stiffness by the direction of rotation, which the sign of z — the band loaded — does not
 ///      give during the unloading after a reversal).
+///    Where the difference sits (forward_share = h, 0..1, added in the ninth session): every ± above
+///    is the even split of a difference 2a between the directions; in general a property X becomes
+///      X × (1 + 2 a h) forward,  X × (1 − 2 a (1 − h)) backward   (each at least 0.05 X),
+///    h = 1/2 the even split (the default), h = 1 only the forward band differs from the model, h = 0
+///    only the backward band. The model's base is identified on passive data in both directions, but
+///    where a record's passive window does not identify it (the actuators move from the first
+///    second) the base is the model file's, and a band that differs in one direction only is a
+///    one-sided change: seven outside authors of sets 7-14 wrote their asymmetry so (σ0, v_s, σ2 or
+///    a drag term changed in one direction), and the even split could not reach it.
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -236,6 +245,15 @@ struct AsymmetryEffect {
   double stribeck_speed = 0.0;  ///< a_v: Stribeck speed v_s × (1 ± a_v), forward +; |a_v| < 1
   double viscous = 0.0;         ///< a_2: viscous coefficient σ2 × (1 ± a_2), forward +; |a_2| < 1
   double motion_stiffness = 0.0;  ///< a_m: stiffness of the band-force rate × (1 ± a_m) by the direction of motion; |a_m| < 1
+  /// h: where the difference 2a between the directions sits: forward × (1 + 2 a h), backward ×
+  /// (1 − 2 a (1 − h)); 0.5 (default) splits it evenly (± a), 1 forward band only, 0 backward only.
+  double forward_share = 0.5;
+  /// The factor of a property with asymmetry coefficient a in one direction (or on one side of z),
+  /// at least 0.05.
+  double factor(double a, bool forward) const {
+    const double f = forward ? 1.0 + 2.0 * a * forward_share : 1.0 - 2.0 * a * (1.0 - forward_share);
+    return f > 0.05 ? f : 0.05;
+  }
 };
 /// Velocity dependence beyond Eq. (2) (see file comment).
 struct VelocityEffect {

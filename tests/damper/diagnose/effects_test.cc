@@ -47,6 +47,16 @@ BrfdParams coulomb_band() {
   return p;
 }
 
+// The force after 4 s at a constant drum speed v from rest (steady sliding for these bases).
+double steady_sliding_force_kip(const BrfdParams& p, double v) {
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  double f = 0.0;
+  for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);
+  return f;
+}
+
 ModelEffects all_effects() {
   ModelEffects e;
   e.backlash = BacklashEffect{0.04, 0.03, 1.0, 3.0};
@@ -972,11 +982,7 @@ TEST(Effects, AsymmetryScalesLevelsStribeckSpeedAndViscousForceByDirection) {
   const double aF = 0.1, av = 0.4, a2 = -0.5;
   p.effects.asymmetry = AsymmetryEffect{aF, 0.3, av, a2};
   for (double v : {-2.0, -0.8, 0.8, 2.0}) {
-    BrfdModel m(p);
-    DamperInput in;
-    in.drum_vel_in_per_s = v;
-    double f = 0.0;
-    for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);
+    const double f = steady_sliding_force_kip(p, v);
     const bool fwd = v > 0.0;
     const double sign = fwd ? 1.0 : -1.0;
     const double fc = (fwd ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip) * (1.0 + sign * aF);
@@ -987,10 +993,37 @@ TEST(Effects, AsymmetryScalesLevelsStribeckSpeedAndViscousForceByDirection) {
     // ... which differs from the levels-only asymmetry by more than the test's tolerance.
     BrfdParams q = p;
     q.effects.asymmetry = AsymmetryEffect{aF, 0.3};
-    BrfdModel mq(q);
-    double fq = 0.0;
-    for (int i = 0; i < 40000; ++i) fq = mq.step(in, 1e-4);
-    EXPECT_GT(std::abs(fq - expected), 1e-3) << v;
+    EXPECT_GT(std::abs(steady_sliding_force_kip(q, v) - expected), 1e-3) << v;
+  }
+}
+
+// Where the difference sits (forward_share h): a property X is X (1 + 2 a h) forward and
+// X (1 − 2 a (1 − h)) backward. With h = 1 only the forward band differs — the backward steady
+// sliding force is the model's own, Eqs. 2-3 — and with h = 0 only the backward band.
+TEST(Effects, AsymmetryForwardShareChangesOneBandOnly) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.4;
+  const double av = 0.3, a2 = 0.4;
+  for (const double h : {1.0, 0.0, 0.25}) {
+    p.effects.asymmetry = AsymmetryEffect{0.0, 0.0, av, a2, 0.0, h};
+    for (double v : {-2.0, -0.8, 0.8, 2.0}) {
+      const double f = steady_sliding_force_kip(p, v);
+      const bool fwd = v > 0.0;
+      const double sign = fwd ? 1.0 : -1.0;
+      auto side = [&](double a) { return fwd ? 1.0 + 2.0 * a * h : 1.0 - 2.0 * a * (1.0 - h); };
+      const double fc = fwd ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      const double fs = fwd ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+      const double r = std::abs(v) / (p.lugre.vs_in_per_s * side(av));
+      const double expected = sign * (fc + (fs - fc) * std::exp(-r * r)) + p.lugre.sigma2_kip_s_per_in * side(a2) * v;
+      EXPECT_NEAR(f, expected, 1e-6 * std::abs(expected)) << "h " << h << " v " << v;
+      if ((h == 1.0 && !fwd) || (h == 0.0 && fwd)) {  // the other band: the model without the effect
+        BrfdParams q = p;
+        q.effects.asymmetry.reset();
+        EXPECT_NEAR(f, steady_sliding_force_kip(q, v), 1e-9) << "h " << h << " v " << v;
+      }
+    }
   }
 }
 
