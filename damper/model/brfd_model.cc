@@ -207,7 +207,11 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   if (e.backlash && e.backlash->takeup_dip > 0.0) {
     // Grip lost at the last reversal, taken up with travel: the capacity, and the share f of it in
     // the band force at once (f = 1: the bristle state unchanged, the force scaled; effects.h).
-    const double lost = e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in);
+    // Each band its own take-up (takeup_forward_share h_t), by the direction since the last reversal.
+    const double h = e.backlash->takeup_forward_share;
+    const double band_gain = last_direction_ >= 0 ? 2.0 * h : 2.0 * (1.0 - h);
+    const double lost =
+        std::min(0.95, band_gain * e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in));
     factor *= 1.0 - lost;
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }

@@ -25,7 +25,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
-                  "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in"});
+                  "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -35,6 +35,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.takeup_dip = b.get_double_in("takeup_dip", 0.0, 0.0, 0.95);
     x.takeup_length_in = b.get_double_in("takeup_length_in", 0.1, 1e-4, 10.0);
     x.takeup_force_share = b.get_double_in("takeup_force_share", 0.0, 0.0, 1.0);
+    x.takeup_forward_share = b.get_double_in("takeup_forward_share", 0.5, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
@@ -181,7 +182,8 @@ std::vector<EffectSpec> build_library() {
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
       "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
       "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - L), N x (1 - "
-      "takeup_force_share L), L = takeup_dip exp(-s/takeup_length), s = drum travel since the last reversal; "
+      "takeup_force_share L), L = takeup_dip exp(-s/takeup_length) (x 2h_t into forward motion, x 2(1 - h_t) into "
+      "backward, h_t = takeup_forward_share; at most 0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel)",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
@@ -193,7 +195,8 @@ std::vector<EffectSpec> build_library() {
        {"takeup_length_in", 0.005, 1.0, 0.1, 0.08, true},
        {"takeup_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
        {"play_in", 0.0, 0.25, 0.0, 0.04, false},
-       {"play_release_per_in", 0.0, 60.0, 0.0, 10.0, false, true}},
+       {"play_release_per_in", 0.0, 60.0, 0.0, 10.0, false, true},
+       {"takeup_forward_share", 0.0, 1.0, 0.5, 0.5, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -207,12 +210,13 @@ std::vector<EffectSpec> build_library() {
         b.takeup_force_share = t[7];
         b.play_in = t[8];
         b.play_release_per_in = t[9];
+        b.takeup_forward_share = t[10];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
         return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
-                                   b.takeup_force_share, b.play_in, b.play_release_per_in};
+                                   b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -402,7 +406,7 @@ std::vector<EffectSpec> build_library() {
       if (s.name == name) s.mechanisms = std::move(groups);
   };
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
-                    {"takeup_dip", "takeup_length_in", "takeup_force_share"},  // grip lost at a reversal, taken up with travel
+                    {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
   // Each property by direction with where the difference sits (forward_share: both bands, or one).

@@ -36,7 +36,9 @@
 ///    and the band force at once by the share f of it (takeup_force_share = f, like pretension's
 ///    λ): N × (1 − f a e^(−s/λ)) — f = 0 the force follows the lower capacity through the bristle
 ///    law, f = 1 the bristle state is unchanged and the transmitted force scaled (the slack is in the
-///    band, not at the lining);
+///    band, not at the lining); each band its own take-up (takeup_forward_share = h_t, ninth session):
+///    a × 2 h_t after a reversal into forward motion, a × 2 (1 − h_t) into backward motion (one band
+///    per direction on the BRFD: a slack in one band only is a one-way take-up; blind set 15 t15);
 ///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
 ///    start the last direction is the sign of the initial band force and s is large (engaged).
 ///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
@@ -84,11 +86,11 @@
 ///    is the even split of a difference 2a between the directions; in general a property X becomes
 ///      X × (1 + 2 a h) forward,  X × (1 − 2 a (1 − h)) backward   (each at least 0.05 X),
 ///    h = 1/2 the even split (the default), h = 1 only the forward band differs from the model, h = 0
-///    only the backward band. The model's base is identified on passive data in both directions, but
-///    where a record's passive window does not identify it (the actuators move from the first
-///    second) the base is the model file's, and a band that differs in one direction only is a
-///    one-sided change: seven outside authors of sets 7-14 wrote their asymmetry so (σ0, v_s, σ2 or
-///    a drag term changed in one direction), and the even split could not reach it.
+///    only the backward band. A band that differs in one direction leaves the other as the base
+///    describes it (the model file's, or identified on a short passive window that does not fix v_s
+///    and σ2), and the even split must move that band too: outside authors of seven of the blind sets
+///    7-14 wrote an asymmetry so (σ0, v_s, σ2 or a drag term changed in one direction); with h, 11 of
+///    the 15 asymmetry misses of those sets are named right (docs/diagnose.md, fifteenth set).
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -218,6 +220,9 @@ struct BacklashEffect {
   double takeup_dip = 0.0;        ///< a: share of the friction capacity lost at a reversal, 0..0.95
   double takeup_length_in = 0.1;  ///< λ: drum travel over which the capacity is taken up again, in (> 0)
   double takeup_force_share = 0.0;  ///< f: share of the lost grip that scales the band force at once, 0..1
+  /// h_t in [0, 1]: the take-up by band, a × 2 h_t after a reversal into forward motion, × 2 (1 − h_t)
+  /// into backward motion (0.5: the same both ways; 1 or 0: one band only); the loss at most 0.95.
+  double takeup_forward_share = 0.5;
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
   /// A reversal: the drum speed passes this against the direction it last moved in (in/s).

@@ -1027,6 +1027,41 @@ TEST(Effects, AsymmetryForwardShareChangesOneBandOnly) {
   }
 }
 
+// backlash's take-up by band (takeup_forward_share h_t): the grip lost at a reversal × 2 h_t into
+// forward motion, × 2 (1 − h_t) into backward motion. With h_t = 1 the reversal into backward motion
+// loses nothing (the model without the effect), the reversal into forward motion loses as the even
+// split (h_t = 1/2) with twice the dip.
+TEST(Effects, TakeupByBandLosesGripOnlyAfterReversalsIntoItsDirection) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  const double dip = 0.2, length = 0.08;
+  BrfdParams one = p, even = p, none = p;
+  one.effects.backlash = BacklashEffect{};
+  one.effects.backlash->takeup_dip = dip;
+  one.effects.backlash->takeup_length_in = length;
+  one.effects.backlash->takeup_forward_share = 1.0;
+  even.effects.backlash = BacklashEffect{};
+  even.effects.backlash->takeup_dip = 2.0 * dip;
+  even.effects.backlash->takeup_length_in = length;
+  BrfdModel m_one(one), m_even(even), m_none(none);
+  DamperInput in;
+  const double dt = 1e-4;
+  double worst_bwd = 0.0, worst_fwd = 0.0, takeup_effect = 0.0;
+  for (int i = 0; i < 40000; ++i) {  // 1 s forward, 1.5 s backward, 1.5 s forward, at 1 in/s
+    const double t = i * dt;
+    in.drum_vel_in_per_s = t < 1.0 ? 1.0 : t < 2.5 ? -1.0 : 1.0;
+    const double f1 = m_one.step(in, dt), fe = m_even.step(in, dt), fn = m_none.step(in, dt);
+    if (t >= 1.0 && t < 2.5) worst_bwd = std::max(worst_bwd, std::abs(f1 - fn));
+    if (t >= 2.5) {
+      worst_fwd = std::max(worst_fwd, std::abs(f1 - fe));
+      takeup_effect = std::max(takeup_effect, std::abs(f1 - fn));
+    }
+  }
+  EXPECT_LT(worst_bwd, 1e-5);
+  EXPECT_LT(worst_fwd, 1e-5);
+  EXPECT_GT(takeup_effect, 0.1);  // the forward band's take-up changes the force
+}
+
 TEST(Effects, SteadySlidingIsUnchangedByBacklashAndPretension) {
   BrfdParams p = synthetic_base();
   p.effects.backlash = BacklashEffect{0.05};
