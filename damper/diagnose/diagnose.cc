@@ -36,15 +36,6 @@ double passive_window_end_s(const DiagnoseRecord& r, const DiagnoseOptions& o) {
   return r.seg.passive_end < r.test.size() ? r.test.time_s[r.seg.passive_end] : r.test.time_s.back() + r.test.dt_s;
 }
 
-// A record's parameters: `p` with x'_k from its first row (as `damper predict` takes them).
-BrfdParams for_record(BrfdParams p, const BrfdTest& t) {
-  if (t.has_actuator_positions) {
-    p.semiactive.actuator1_initial_in = t.actuator1_in[0];
-    p.semiactive.actuator2_initial_in = t.actuator2_in[0];
-  }
-  return p;
-}
-
 // The base of a record for "before"/"after": identified on its passive window exactly as
 // `damper predict` does (identify), or `p` as is (model).
 BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const DiagnoseOptions& o, double* window_rmse,

@@ -4,6 +4,7 @@
 #include "damper/data/replay.h"
 #include "damper/model/brfd_config.h"
 #include "damper/diagnose/diagnose.h"
+#include "damper/diagnose/diagnose_fit.h"
 #include "damper/model/effects.h"
 #include "damper/synthetic/hidden_shapes.h"
 
@@ -29,12 +30,6 @@ double raised_ramp(double s) { return s <= 0.0 ? 0.0 : s >= 1.0 ? 1.0 : 0.5 - 0.
 
 constexpr double kMotionS = 12.0, kRestS = 2.0;
 
-BrfdParams with_initial(BrfdParams p, const BrfdTest& t) {
-  p.semiactive.actuator1_initial_in = t.actuator1_in[0];
-  p.semiactive.actuator2_initial_in = t.actuator2_in[0];
-  return p;
-}
-
 // Force of a model on the inputs of `t`, bristle state from 0 (as a test starting unloaded).
 std::vector<double> generate(const BrfdParams& p, const BrfdTest& t) {
   return replay_force_kip(p, t, 0, t.size(), ReplayOptions{false});
@@ -45,7 +40,7 @@ BenchCase library_case(const std::string& effect, const std::string& strength, s
   c.name = effect + "/" + strength;
   c.family = effect;
   c.truth = [effect, theta](const BrfdTest& t, const BrfdParams& base) {
-    BrfdParams p = with_initial(base, t);
+    BrfdParams p = for_record(base, t);
     effect_spec(effect).set(p.effects, theta);
     return generate(p, t);
   };
@@ -60,7 +55,7 @@ BenchCase own_backlash(const std::string& strength, double gap_in, double ramp_i
   c.name = "own:backlash_weight/" + strength;
   c.family = "backlash";
   c.truth = [gap_in, ramp_in](const BrfdTest& t, const BrfdParams& base) {
-    std::vector<double> f = generate(with_initial(base, t), t);
+    std::vector<double> f = generate(for_record(base, t), t);
     double travel = 0.0;
     int dir = 0;
     for (std::size_t i = 1; i < t.size(); ++i) {
@@ -94,7 +89,7 @@ BenchCase own_delay(const std::string& strength, double delay_s) {
       d.actuator1_in[i] = i >= k ? t.actuator1_in[i - k] : t.actuator1_in[0];
       d.actuator2_in[i] = i >= k ? t.actuator2_in[i - k] : t.actuator2_in[0];
     }
-    return generate(with_initial(base, t), d);
+    return generate(for_record(base, t), d);
   };
   return c;
 }
@@ -128,7 +123,7 @@ BenchCase own_friction_d2(const std::string& strength, double a) {
   c.name = "own:friction_d2/" + strength;
   c.family = "self_energizing";
   c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
-    return generate_with_level_scale(with_initial(base, t), t, [&](std::size_t i, double) {
+    return generate_with_level_scale(for_record(base, t), t, [&](std::size_t i, double) {
       return 1.0 + a * t.drum_disp_in[i] * t.drum_disp_in[i];
     });
   };
@@ -142,7 +137,7 @@ BenchCase own_lining_wear(const std::string& strength, double a) {
   c.name = "own:lining_wear/" + strength;
   c.family = "pretension";
   c.truth = [a](const BrfdTest& t, const BrfdParams& base) {
-    return generate_with_level_scale(with_initial(base, t), t,
+    return generate_with_level_scale(for_record(base, t), t,
                                      [a](std::size_t, double work) { return 1.0 / (1.0 + a * work); });
   };
   return c;
@@ -154,7 +149,7 @@ BenchCase own_rest_creep(const std::string& strength, double rho, double tau_s) 
   c.name = "own:rest_creep/" + strength;
   c.family = "residual_static";
   c.truth = [rho, tau_s](const BrfdTest& t, const BrfdParams& base) {
-    std::vector<double> f = generate(with_initial(base, t), t);
+    std::vector<double> f = generate(for_record(base, t), t);
     for (std::size_t i = 0; i < t.size(); ++i) {
       const double s = t.time_s[i] - kMotionS;
       if (s > 0.0) f[i] *= 1.0 - rho * s / (s + tau_s);
@@ -169,7 +164,7 @@ BenchCase none_case(bool identify) {
   c.name = identify ? "none/identify" : "none/model";
   c.family = "none";
   c.identify = identify;
-  c.truth = [](const BrfdTest& t, const BrfdParams& base) { return generate(with_initial(base, t), t); };
+  c.truth = [](const BrfdTest& t, const BrfdParams& base) { return generate(for_record(base, t), t); };
   return c;
 }
 

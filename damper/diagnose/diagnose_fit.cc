@@ -10,6 +10,14 @@
 
 namespace damper {
 
+BrfdParams for_record(BrfdParams p, const BrfdTest& t) {
+  if (t.has_actuator_positions) {
+    p.semiactive.actuator1_initial_in = t.actuator1_in[0];
+    p.semiactive.actuator2_initial_in = t.actuator2_in[0];
+  }
+  return p;
+}
+
 double effective_sample_count(const std::vector<double>& r) {
   const std::size_t n = r.size();
   if (n < 4) return static_cast<double>(n);
@@ -343,13 +351,9 @@ LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const B
       const LugreParams g = lugre_from_search_vector(x);
       double se = 0.0;
       for (const DiagnoseRecord& r : *recs) {
-        BrfdParams p = model;
+        BrfdParams p = for_record(model, r.test);
         p.lugre = g;
         p.effects = effects;
-        if (r.test.has_actuator_positions) {
-          p.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
-          p.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
-        }
         const std::size_t end = std::max<std::size_t>(2, r.seg.passive_end);
         const std::vector<double> f = replay_force_kip(p, r.test, 0, end);
         for (std::size_t i = 0; i < end; ++i) se += (f[i] - r.test.force_kip[i]) * (f[i] - r.test.force_kip[i]);
@@ -368,11 +372,7 @@ LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const B
   // the model file's block.
   std::vector<DiagnoseRecord> usable;
   for (const DiagnoseRecord& r : recs) {
-    BrfdParams p = model;
-    if (r.test.has_actuator_positions) {
-      p.semiactive.actuator1_initial_in = r.test.actuator1_in[0];
-      p.semiactive.actuator2_initial_in = r.test.actuator2_in[0];
-    }
+    const BrfdParams p = for_record(model, r.test);
     IdentificationOptions io;
     io.t0_s = r.test.time_s.front();
     io.t1_s = r.seg.passive_end < r.test.size() ? r.test.time_s[r.seg.passive_end] : r.test.time_s.back() + r.test.dt_s;

@@ -43,6 +43,10 @@ struct ModelState {
 /// Every k-th sample of a record (split, regimes and spans mapped).
 DiagnoseRecord decimate(const DiagnoseRecord& r, std::size_t k);
 
+/// A record's parameters: `p` with Eq. (4)'s x'_1, x'_2 from the record's first row, as
+/// `damper predict` takes them (records without actuator positions: `p` as is).
+BrfdParams for_record(BrfdParams p, const BrfdTest& t);
+
 /// Model force over a whole record.
 std::vector<double> simulate(const BrfdParams& p, const BrfdTest& t);
 
