@@ -21,7 +21,8 @@ std::unique_ptr<DamperModel> make_damper_model(const BrfdParams& params) {
 namespace {
 
 // |d(rate/|v|)/dw| of transition_shape's bristle law at w = sign(v) y (rate_in_frame): the shaped
-// ratio s(w) = sign(w) |w|^α e(|w|) (1 − u [w < 0]) and Dahl's sign(q)|q|^n of q = 1 − s(w). The
+// ratio s(w) = sign(w) |w|^α e(w) (1 − u [w < 0]), the breakaway gate e only while the band loads
+// (e = 1 for w <= 0), and Dahl's sign(q)|q|^n of q = 1 − s(w). The
 // α term is taken at |w| >= 0.05 for α < 1 (its slope is unbounded at w = 0), Dahl's at
 // |q| >= 0.05 for n < 1, as the sub-step bound always did.
 double shape_slope(const TransitionShapeEffect& ts, double w) {
@@ -29,10 +30,11 @@ double shape_slope(const TransitionShapeEffect& ts, double w) {
   const double power = std::pow(aw, alpha);
   const double power_slope = alpha * std::pow(alpha < 1.0 ? std::max(aw, 0.05) : aw, alpha - 1.0);
   double gate = 1.0, gate_slope = 0.0;
-  if (beta > 0.0) {
-    const double phase = M_PI * (aw - 0.5 * (1.0 + beta)) / (1.0 - beta);
-    gate = aw <= beta ? 0.0 : aw >= 1.0 ? 1.0 : 0.5 + 0.5 * std::sin(phase);
-    gate_slope = aw <= beta || aw >= 1.0 ? 0.0 : 0.5 * M_PI / (1.0 - beta) * std::cos(phase);
+  if (beta > 0.0 && w > 0.0) {  // the breakaway gate acts while the band loads (w > 0) only
+    const double full = ts.breakaway_full_slip_ratio();
+    const double phase = M_PI * (aw - 0.5 * (beta + full)) / (full - beta);
+    gate = aw <= beta ? 0.0 : aw >= full ? 1.0 : 0.5 + 0.5 * std::sin(phase);
+    gate_slope = aw <= beta || aw >= full ? 0.0 : 0.5 * M_PI / (full - beta) * std::cos(phase);
   }
   const double unloading = w < 0.0 ? 1.0 - ts.elastic_unloading : 1.0;
   const double shaped = std::copysign(power * gate * unloading, w);
@@ -323,9 +325,9 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   const double y = band / (f.g * servo);  // force ratio
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
-  if (ts && ts->breakaway_ratio > 0.0) {  // elasto-plastic: no slip below the breakaway ratio
-    const double beta = ts->breakaway_ratio, ay = std::abs(y);
-    shaped *= ay <= beta ? 0.0 : ay >= 1.0 ? 1.0 : 0.5 + 0.5 * std::sin(M_PI * (ay - 0.5 * (1.0 + beta)) / (1.0 - beta));
+  if (ts && ts->breakaway_ratio > 0.0 && y * v > 0.0) {  // elasto-plastic loading: no slip below the breakaway ratio
+    const double beta = ts->breakaway_ratio, full = ts->breakaway_full_slip_ratio(), ay = std::abs(y);
+    shaped *= ay <= beta ? 0.0 : ay >= full ? 1.0 : 0.5 + 0.5 * std::sin(M_PI * (ay - 0.5 * (beta + full)) / (full - beta));
   }
   if (ts && ts->elastic_unloading != 0.0 && y * v < 0.0) shaped *= 1.0 - ts->elastic_unloading;  // sticks, unloads elastically
   double rate = v - std::abs(v) * shaped;
@@ -511,9 +513,9 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / (f.g * servo0)) : 1.0;
     if (slope < 0.0) {
       slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
-      // The breakaway's half-sine rises with slope π/(2(1 − β)) in y.
+      // The breakaway's half-sine rises with slope π/(2(y_m − β)) in y.
       if (e.transition_shape->breakaway_ratio > 0.0)
-        slope *= 1.0 + M_PI / (2.0 * (1.0 - e.transition_shape->breakaway_ratio));
+        slope *= 1.0 + M_PI / (2.0 * (e.transition_shape->breakaway_full_slip_ratio() - e.transition_shape->breakaway_ratio));
       // Dahl's n: d|u|^n/du = n |u|^(n−1), u in [0, 2]; bounded with |u| >= 0.05 for n < 1.
       const double dahl = e.transition_shape->dahl_exponent;
       if (dahl != 1.0) slope *= dahl >= 1.0 ? dahl * std::pow(2.0, dahl - 1.0) : dahl * std::pow(0.05, dahl - 1.0);

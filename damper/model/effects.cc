@@ -120,13 +120,14 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
     t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent", "slow_share",
-                  "slow_stiffness_ratio"});
+                  "slow_stiffness_ratio", "breakaway_ramp_share"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
                                                t.get_double_in("dahl_exponent", 1.0, 0.1, 20.0),
                                                t.get_double_in("slow_share", 0.0, 0.0, 0.95),
-                                               t.get_double_in("slow_stiffness_ratio", 1.0, 0.001, 100.0)};
+                                               t.get_double_in("slow_stiffness_ratio", 1.0, 0.001, 100.0),
+                                               t.get_double_in("breakaway_ramp_share", 1.0, 0.01, 1.0)};
   }
   return e;
 }
@@ -372,21 +373,24 @@ std::vector<EffectSpec> build_library() {
       "transition_shape",
       "shape of the stick-to-slip transition: sharper or smoother (Dahl exponent), an elastic range before "
       "breakaway, elastic unloading after a reversal (elasto-plastic / Maxwell-slip pre-sliding)",
-      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent e(|y|) (1 - u [y v < 0]), e = 0 below breakaway_ratio, "
-      "rising as a half sine to 1 at |y| = 1 (LuGre: exponent = 1, u = 0, breakaway_ratio = 0)",
+      "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent e(|y|) (1 - u [y v < 0]), e = 0 below breakaway_ratio b, "
+      "rising as a half sine to 1 at |y| = b + breakaway_ramp_share (1 - b) (LuGre: exponent = 1, u = 0, "
+      "breakaway_ratio = 0)",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
        {"dahl_exponent", 0.3, 4.0, 1.0, 2.0, true},
        {"slow_share", 0.0, 0.9, 0.0, 0.5, false},
-       {"slow_stiffness_ratio", 0.03, 1.0, 1.0, 0.2, true}},
+       {"slow_stiffness_ratio", 0.03, 1.0, 1.0, 0.2, true},
+       {"breakaway_ramp_share", 0.05, 1.0, 1.0, 0.45, true}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
-        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5]};
+        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
-                                   a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio};
+                                   a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio,
+                                   a.breakaway_ramp_share};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -427,7 +431,7 @@ std::vector<EffectSpec> build_library() {
                            {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},
                            {"band_spring_kip_per_in", "band_spring_neg_ratio"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
-                            {"elastic_unloading", "breakaway_ratio"},       // elasto-plastic pre-sliding
+                            {"elastic_unloading", "breakaway_ratio", "breakaway_ramp_share"},  // elasto-plastic pre-sliding
                             {"slow_share", "slow_stiffness_ratio"}});       // two-stage contact
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});

@@ -172,10 +172,16 @@
 ///      dz/dt = v − |v| sign(y) |y|^α   (α = 1: LuGre; large α: elastic rise, sharp saturation;
 ///      α < 1: the stiffness falls from the start of the stroke, a smoother, rounder transition)
 ///    and the pre-sliding of the elasto-plastic and Maxwell-slip models (Dupont et al. 2002, IEEE TAC
-///    47; Al-Bender et al. 2005, IEEE TAC 50): the slip term is multiplied by
-///      e(y) = 0 for |y| <= β, ½ + ½ sin(π (|y| − (1 + β)/2)/(1 − β)) for β < |y| < 1, 1 beyond
-///      (breakaway_ratio = β: below it the contact is purely elastic, F rises as N σ0 d)
-///    and by (1 − u) while the band unloads (y v < 0; elastic_unloading = u: u = 1, the contact
+///    47; Al-Bender et al. 2005, IEEE TAC 50): while the band loads (y v > 0) the slip term is multiplied by
+///      e(y) = 0 for |y| <= β, ½ + ½ sin(π (|y| − (β + y_m)/2)/(y_m − β)) for β < |y| < y_m, 1 beyond
+///      (breakaway_ratio = β: below it the contact is purely elastic, F rises as N σ0 d;
+///      y_m = β + w (1 − β), breakaway_ramp_share = w: Dupont's z_max, where slip is full, at most the
+///      steady state (w = 1, the family until the tenth session); two outside authors wrote the
+///      onset of slip between β and 2β, blind sets 14 and 15)
+///    (Dupont's α(z) acts only where sgn(v) = sgn(z): the gate does not act on unloading — until the
+///    tenth session it did, which two outside authors' elasto-plastic shapes, both with the gate on
+///    loading only, as Dupont's, did not follow), and by (1 − u) while the band unloads (y v < 0;
+///    elastic_unloading = u: u = 1, the contact
 ///    sticks at a reversal and the force falls back along the elastic line N σ0, as each element of
 ///    a Maxwell-slip model does; LuGre's own unloading slips, at twice the elastic rate from y = 1).
 ///    Dahl's own exponent (dahl_exponent = n; Dahl 1968/1976, dF/dx = σ0 |1 − F/Fc sgn v|^n sgn(·)):
@@ -303,6 +309,9 @@ struct TransitionShapeEffect {
   double dahl_exponent = 1.0;      ///< n > 0: Dahl's exponent of the remaining way to sliding (1: LuGre)
   double slow_share = 0.0;         ///< φ in [0, 0.9): share of the friction carried by a second, slower contact element
   double slow_stiffness_ratio = 1.0;  ///< k2 > 0: that element's stiffness / σ0 (its transition is 1/k2 times longer)
+  double breakaway_ramp_share = 1.0;  ///< w in (0, 1]: slip sets in between β and β + w (1 − β) (Dupont's z_max; 1: at sliding)
+  /// The force ratio at which the elasto-plastic slip gate reaches 1 (Dupont et al. 2002's z_max/z_ss).
+  double breakaway_full_slip_ratio() const { return breakaway_ratio + breakaway_ramp_share * (1.0 - breakaway_ratio); }
   bool nonlinear() const {
     return exponent != 1.0 || elastic_unloading != 0.0 || breakaway_ratio != 0.0 || dahl_exponent != 1.0;
   }

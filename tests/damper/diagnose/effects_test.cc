@@ -428,6 +428,59 @@ TEST(Effects, ElastoPlasticPreSlidingRisesAndUnloadsOnTheElasticLine) {
   }
 }
 
+// Dupont et al. 2002's elasto-plastic model with its own z_max: the slip gate rises as a half sine
+// from β to y_m = β + w (1 − β) and is 1 beyond, so from y_m on the force approaches g along LuGre's
+// exponential. Loading from rest at constant v (g = Fc): F = σ0 x up to β Fc; over the ramp
+// dy/dx = (σ0/g)(1 − y e(y)), so y_m is reached at x_m = (g/σ0)(β + ∫_β^y_m dy/(1 − y e(y)))
+// (Simpson's rule here, not the model's stepping); beyond it y = 1 − (1 − y_m) e^(−σ0 (x − x_m)/g).
+// The gate acts while the band loads only (Dupont's α where sgn(v) = sgn(z)): with u = 0 the band
+// unloads after a reversal as LuGre's does, F = (Fc + Fb) e^(−σ0 s/Fb) − Fb, through the ratios
+// where the gate would have held it.
+TEST(Effects, ElastoPlasticSlipIsFullWhereItsRampEndsAndUnloadsAsLuGre) {
+  BrfdParams p = coulomb_band();
+  const double fc = p.lugre.fc_fwd_kip, fb = p.lugre.fc_bwd_kip, s0 = p.lugre.sigma0_kip_per_in, beta = 0.3, w = 0.4;
+  const double y_m = beta + w * (1.0 - beta);
+  auto gate = [&](double y) { return 0.5 + 0.5 * std::sin(M_PI * (y - 0.5 * (beta + y_m)) / (y_m - beta)); };
+  const int n = 2000;  // Simpson over [β, y_m]
+  const double h = (y_m - beta) / n;
+  double integral = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double y = beta + i * h, weight = i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0;
+    integral += weight / (1.0 - y * gate(y));
+  }
+  integral *= h / 3.0;
+  const double x_m = fc / s0 * (beta + integral);
+  const double y_check = 0.8, x_check = x_m + fc / s0 * std::log((1.0 - y_m) / (1.0 - y_check));
+  const double dt = 1e-5, v = 1.0;
+  const int steps = static_cast<int>(std::round(x_check / (v * dt)));
+  const double x = steps * v * dt;
+  const double expected = fc * (1.0 - (1.0 - y_m) * std::exp(-s0 * (x - x_m) / fc));
+  std::vector<double> force;
+  for (const double ramp : {w, 1.0}) {
+    BrfdParams q = p;
+    q.effects.transition_shape = TransitionShapeEffect{1.0, 0.0, beta};
+    q.effects.transition_shape->breakaway_ramp_share = ramp;
+    BrfdModel m(q);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 1; i <= steps; ++i) {
+      in.drum_disp_in = i * v * dt;
+      f = m.step(in, dt);
+    }
+    force.push_back(f);
+    if (ramp != w) continue;
+    for (int i = 0; i < 200000; ++i) f = m.step(in, dt);  // 2 in of forward sliding: F = Fc
+    in.drum_vel_in_per_s = -v;
+    // Unloading to F = 0.45 Fb (|y| = 0.45, inside the ramp β..y_m): s = (Fb/σ0) ln((Fc + Fb)/(1.45 Fb)).
+    const int back = static_cast<int>(std::round(fb / s0 * std::log((fc + fb) / (1.45 * fb)) / (v * dt)));
+    for (int i = 0; i < back; ++i) f = m.step(in, dt);
+    EXPECT_NEAR(f, (fc + fb) * std::exp(-s0 * back * v * dt / fb) - fb, 1e-6) << "unloading as LuGre (u = 0)";
+  }
+  EXPECT_NEAR(force[0], expected, 1e-4 * fc);
+  EXPECT_GT(std::abs(force[1] - expected), 0.02 * fc) << "the slip ending at steady state (w = 1) is another force";
+}
+
 // The taut band releases r times faster than the lining loads: with σ1 = σ2 = 0 and Fs = Fc (g = Fc),
 // S = σ0 (z − δ) obeys dS/ds = −r σ0 (1 + S/g) after a reversal, so the force falls from g to g/10
 // over a drum travel (g / (r σ0)) ln(2 / 1.1).
