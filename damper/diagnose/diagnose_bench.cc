@@ -279,11 +279,13 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5}));
   // Drive-line play of 2 x 0.05 in, the band unloading over it (e^(-20 s)).
   c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5}));
-  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0}));
-  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0}));
+  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0}));
+  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
-  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0}));
-  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0}));
+  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 1.0}));
+  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0}));
+  // A stretched settling (β = 0.4) of 40 % of the held force: fast at first, a long tail.
+  c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5}));
@@ -297,11 +299,14 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
   c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15}));
-  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0}));
-  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0}));
-  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0}));  // a saturating contact, Fc = b N^0.6
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0}));  // a saturating contact, Fc = b N^0.6
   // Thermal fade: the friction work stored as heat, conducted away with a 5 s time constant.
-  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2}));
+  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2, 1.0}));
+  // The band's own pre-tension loosens with the wear (40 % over about 50 kip·in of friction work);
+  // the actuators keep their increment.
+  c.push_back(library_case("pretension", "loosening", {0.0, 0.0, 0.008, 1.0, 50.0, 0.0, 0.0}));
   c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}));
   c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}));
   c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0}));  // band-force feedback only

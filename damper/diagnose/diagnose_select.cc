@@ -94,6 +94,7 @@ double level_at_stop(const std::vector<double>& l, const Segmentation& seg, doub
 // regimes and in all.
 struct SignatureTally {
   double own_gain_kip2 = 0.0, gain_kip2 = 0.0;
+  double rest_gain_kip2 = 0.0;  // of an effect not acting at rest: its gain from the change at the final rest
   double own_samples = 0.0, samples = 0.0;
   double own_null_kip2 = 0.0, null_kip2 = 0.0;
 };
@@ -103,18 +104,19 @@ struct SignatureTally {
 // the actuators also every sample where they move) and on the others, added to `tally` per fold as
 // max(own, 0) and max(own, 0) + max(other, 0), with the samples and the null residual energy of each.
 // The final rest: the force the drum stopped with is inherited from the last stroke; only what
-// changes after the stop is the work of an effect acting at rest (relaxation, creep). So the rest
-// counts only for effects acting at rest, and for them only the change of the residual from its
-// level at the stop: Σ((l_null − c_null)² − (l_cand − c_cand)²), c the level over the first
-// kStopLevelS of the rest. A constant offset carried into the rest from the stroke before is not
-// a residual static force, whichever effect could also shift it.
+// changes after the stop is the work of an effect acting at rest (relaxation, creep). So at the
+// rest only the change of the residual from its level at the stop counts,
+// Σ((l_null − c_null)² − (l_cand − c_cand)²), c the level over the first kStopLevelS of the rest:
+// as own gain for effects acting at rest (and for those acting through the actuators where they
+// move), as gain elsewhere for every other effect. A constant offset carried into the rest from
+// the stroke before is nobody's signature, whichever effect could also shift it.
 constexpr double kStopLevelS = 0.05;
 
 void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
                     const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, SignatureTally& tally) {
   auto has = [&spec](const char* g) { return std::find(spec.regimes.begin(), spec.regimes.end(), g) != spec.regimes.end(); };
   const bool at_rest = has("after_stop"), actuators = has("actuators");
-  double own = 0.0, other = 0.0;
+  double own = 0.0, other = 0.0, rest = 0.0;
   for (const HeldOutPart& p : fold.parts) {
     const DiagnoseRecord& r = recs[p.record];
     std::vector<double> r0(r.test.size()), r1(r.test.size());
@@ -123,24 +125,31 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       r1[i] = fp.pred[p.record][i] - r.test.force_kip[i];
     }
     const std::vector<double> l0 = low_frequency_part(r0, r.test.dt_s, so), l1 = low_frequency_part(r1, r.test.dt_s, so);
-    const double c0 = at_rest ? level_at_stop(l0, r.seg, r.test.dt_s, kStopLevelS) : 0.0;
-    const double c1 = at_rest ? level_at_stop(l1, r.seg, r.test.dt_s, kStopLevelS) : 0.0;
+    const double c0 = level_at_stop(l0, r.seg, r.test.dt_s, kStopLevelS);
+    const double c1 = level_at_stop(l1, r.seg, r.test.dt_s, kStopLevelS);
     for (std::size_t i = p.begin; i < p.end; ++i) {
       const Regime g = r.seg.regime[i];
-      if (g == Regime::after_stop) {
-        if (at_rest) {
-          own += (l0[i] - c0) * (l0[i] - c0) - (l1[i] - c1) * (l1[i] - c1);
-          tally.own_samples += 1.0;
-          tally.samples += 1.0;
-          tally.own_null_kip2 += (l0[i] - c0) * (l0[i] - c0);
-          tally.null_kip2 += (l0[i] - c0) * (l0[i] - c0);
-        }
-        continue;
-      }
       // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
       // through them (the drum and the actuators are independent axes: a speed law acts while
       // the actuators are displaced too).
       const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
+      if (g == Regime::after_stop) {
+        // After the stop only the change of the force from the level it stopped with counts: that
+        // level is what every effect before the stop set, its change at rest is residual_static's
+        // physics (or the actuators', where they move). An effect of the moving drum that takes
+        // away the change at rest has its gain there counted elsewhere (blind set 17 t07: a speed
+        // law's capacity at a near-zero speed let the held force creep, and was named velocity).
+        const double d0 = l0[i] - c0, d1 = l1[i] - c1;
+        (at_rest || moving ? own : other) += d0 * d0 - d1 * d1;
+        if (!at_rest && !moving) rest += d0 * d0 - d1 * d1;
+        tally.samples += 1.0;
+        tally.null_kip2 += d0 * d0;
+        if (at_rest || moving) {
+          tally.own_samples += 1.0;
+          tally.own_null_kip2 += d0 * d0;
+        }
+        continue;
+      }
       const Regime drum = r.seg.drum_regime.empty() ? g : r.seg.drum_regime[i];
       const bool reloading = !r.seg.band_reloading.empty() && r.seg.band_reloading[i] && has("band_reloading");
       const bool mine = moving || reloading || has(to_string(drum).c_str());
@@ -155,6 +164,7 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
   }
   tally.own_gain_kip2 += std::max(own, 0.0);
   tally.gain_kip2 += std::max(own, 0.0) + std::max(other, 0.0);
+  tally.rest_gain_kip2 += std::max(rest, 0.0);
 }
 
 bool at_null(const EffectSpec& spec, const ModelEffects& e) {
@@ -222,6 +232,11 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
       g.why = "worse on held-out record #" + std::to_string(k + 1);
       return g;
     }
+  }
+  if (check_signature && c.rest_share > o.max_rest_share) {
+    g.why = format_significant(100.0 * c.rest_share, 2) + "% of its gain is the force changing at the final rest, where it does not act (at most " +
+            format_significant(100.0 * o.max_rest_share, 2) + "%)";
+    return g;
   }
   if (check_signature && !signature_holds(c, o)) {
     g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes (" +
@@ -356,14 +371,25 @@ std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_l
         if (((a >> i) & 1u) != ((b >> i) & 1u)) return ((a >> i) & 1u) != 0;
       return false;
     });
+    // The rest law's shape parameters at their null values first, then free (EffectSpec::rest_shape).
+    std::vector<std::size_t> shape;
+    for (const std::string& name : spec.rest_shape) {
+      shape.push_back(parameter_index(spec, name));
+      fixed[shape.back()] = spec.parameters[shape.back()].null_value;
+    }
     std::vector<EffectSpec> out;
-    for (unsigned bits : choices) {
-      std::vector<std::size_t> free_index;
-      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
-        const auto r = std::find(at.begin(), at.end(), j);
-        if (r == at.end() || ((bits >> (r - at.begin())) & 1u)) free_index.push_back(j);
+    for (const bool shape_free : {false, true}) {
+      if (shape_free && shape.empty()) break;
+      for (unsigned bits : choices) {
+        std::vector<std::size_t> free_index;
+        for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+          const auto r = std::find(at.begin(), at.end(), j);
+          const bool is_shape = std::find(shape.begin(), shape.end(), j) != shape.end();
+          if (is_shape ? shape_free : (r == at.end() || ((bits >> (r - at.begin())) & 1u)))
+            free_index.push_back(j);
+        }
+        out.push_back(make_subfamily(spec, free_index, fixed));
       }
-      out.push_back(make_subfamily(spec, free_index, fixed));
     }
     out.push_back(spec);  // the whole family last: kept only where it predicts the unseen rests better
     return out;
@@ -599,6 +625,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     s.signature_share = tally.gain_kip2 > 0.0 ? tally.own_gain_kip2 / tally.gain_kip2 : 0.0;
     s.own_time_share = tally.samples > 0.0 ? tally.own_samples / tally.samples : 0.0;
     s.own_residual_share = tally.null_kip2 > 0.0 ? tally.own_null_kip2 / tally.null_kip2 : 0.0;
+    s.rest_share = tally.gain_kip2 > 0.0 ? std::min(1.0, tally.rest_gain_kip2 / tally.gain_kip2) : 0.0;
     const GateResult g = gates(s, std::vector<int>(s.part_gain_kip2.size(), 1), part_record, recs.size(), sigma2, o, true);
     s.heldout_gain = g.gain_share;
     s.excess_share = g.excess_share;

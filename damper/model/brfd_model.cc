@@ -82,6 +82,8 @@ void BrfdModel::reset() {
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
   held_z_in_ = 0.0;
+  rest_time_s_ = 0.0;
+  rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
@@ -194,7 +196,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
       // Linear in the friction work W, or saturating over W0: w W0 (1 − e^(−W/W0)) (effects.h).
       const double w0 = e.pretension->wear_saturation_kip_in;
       const double worn = w0 > 0.0 ? -w0 * std::expm1(-friction_work_kip_in_ / w0) : friction_work_kip_in_;
-      factor *= std::max(0.05, 1.0 - e.pretension->wear_per_kip_in * worn);
+      const double psi = std::max(0.05, 1.0 - e.pretension->wear_per_kip_in * worn);
+      // The pre-tension b loosens by ψ, the actuators' increment by the share u of it (effects.h).
+      fc = psi * b + (1.0 - e.pretension->wear_actuator_share * (1.0 - psi)) * dfc;
+      fs *= psi;
     }
   }
   if (e.self_energizing) {
@@ -304,7 +309,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   }
   if (e.residual_static) {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
-    f.relax = std::exp(-q * q) / e.residual_static->time_constant_s;
+    f.relax = rest_rate_per_s_ >= 0.0 ? rest_rate_per_s_ : std::exp(-q * q) / e.residual_static->time_constant_s;
     if (f.relax > 0.0) {
       // z_r = (1 − m) z_h + m z_o, S(z_o) N_λ = ±ρ Fc of the loaded direction + f_o.
       const ResidualStaticEffect& rs = *e.residual_static;
@@ -470,7 +475,19 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     // z_h follows z while the drum moves and holds the state it stopped with: frozen once the rest
     // weight w = exp(−(s̃/v_rest)²) reaches 1/2 (a soft gate would let z_h creep after z at rest).
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
-    if (std::exp(-q * q) < 0.5) held_z_in_ = z_in_;
+    const double w = std::exp(-q * q);
+    if (w < 0.5) held_z_in_ = z_in_;
+    // Stretched settling: at rest the step's rate is ((t_r + dt)^β − t_r^β) / (τ_r^β dt), the
+    // exact mean rate of exp(−(t_r/τ_r)^β) over the step; the rest clock t_r restarts at each stop.
+    const ResidualStaticEffect& rs = *e.residual_static;
+    rest_rate_per_s_ = -1.0;
+    if (w < 0.5) {
+      rest_time_s_ = 0.0;
+    } else if (rs.relaxation_exponent != 1.0 && dt_s > 0.0) {
+      const double tau = rs.time_constant_s, beta = rs.relaxation_exponent;
+      rest_rate_per_s_ = (std::pow((rest_time_s_ + dt_s) / tau, beta) - std::pow(rest_time_s_ / tau, beta)) / dt_s;
+      rest_time_s_ += dt_s;
+    }
   }
   if (e.velocity && e.velocity->stribeck_lag_s > 0.0)  // lagged speed of the Stribeck term: exact
     stribeck_speed_ = speed + (stribeck_speed_ - speed) * std::exp(-dt_s / e.velocity->stribeck_lag_s);

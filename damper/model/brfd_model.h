@@ -177,6 +177,8 @@ class BrfdModel final : public DamperModel {
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s
   double held_z_in_ = 0.0;                ///< z_h of residual_static: z when the drum last moved, in
+  double rest_time_s_ = 0.0;              ///< t_r of residual_static: time since the drum came to rest, s
+  double rest_rate_per_s_ = -1.0;         ///< residual_static's rate over the current step (< 0: w/τ_r)
   double slow_z_in_ = 0.0;                ///< z2 of transition_shape's slow contact element, in
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s

@@ -42,12 +42,13 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
     x.relaxed_share = r.get_double_in("relaxed_share", 1.0, 0.0, 1.0);
     x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
+    x.relaxation_exponent = r.get_double_in("relaxation_exponent", 1.0, 0.05, 1.0);
     e.residual_static = x;
   }
   if (s.has("actuator_lag")) {
@@ -91,7 +92,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
-                  "wear_recovery_per_s"});
+                  "wear_recovery_per_s", "wear_actuator_share"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -99,6 +100,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.clamp_exponent = p.get_double_in("clamp_exponent", 1.0, 0.1, 10.0);
     x.wear_saturation_kip_in = p.get_double_in("wear_saturation_kip_in", 0.0, 0.0, 1e9);
     x.wear_recovery_per_s = p.get_double_in("wear_recovery_per_s", 0.0, 0.0, 1e3);
+    x.wear_actuator_share = p.get_double_in("wear_actuator_share", 1.0, 0.0, 1.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -222,11 +224,12 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), z_r = (1 - m) z_held + m z_o, "
-      "S(z_o) = sign(z) ratio Fc + offset",
+      "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) exp(-(t_rest/tau_r)^beta)",
       {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
        {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
        {"relaxed_share", 0.0, 1.0, 0.0, 1.0, false, true},
-       {"offset_kip", -3.0, 3.0, 0.0, 0.0, false}},
+       {"offset_kip", -3.0, 3.0, 0.0, 0.0, false},
+       {"relaxation_exponent", 0.15, 1.0, 1.0, 0.5, true}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
@@ -234,10 +237,11 @@ std::vector<EffectSpec> build_library() {
         r.time_constant_s = t[1];
         r.relaxed_share = t[2];
         r.offset_kip = t[3];
+        r.relaxation_exponent = t[4];
         return r;
       }),
       std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
-        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip};
+        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.relaxation_exponent};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (first- and second-order response)",
@@ -315,13 +319,14 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc, Fs x (1 - wear W0 (1 - exp(-W/W0))), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade); clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
+      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
        {"clamp_exponent", 0.3, 3.0, 1.0, 0.67, true},
        {"wear_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
-       {"wear_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false}},
+       {"wear_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
+       {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -331,11 +336,12 @@ std::vector<EffectSpec> build_library() {
         p.clamp_exponent = t[3];
         p.wear_saturation_kip_in = t[4];
         p.wear_recovery_per_s = t[5];
+        p.wear_actuator_share = t[6];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
-                                   p.wear_saturation_kip_in, p.wear_recovery_per_s};
+                                   p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -403,7 +409,10 @@ std::vector<EffectSpec> build_library() {
   sig("backlash", {"reversal", "band_reloading"}, {"residual_static", "transition_shape"});
   sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
   for (EffectSpec& s : lib)
-    if (s.name == "residual_static") s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}};
+    if (s.name == "residual_static") {
+      s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}};
+      s.rest_shape = {"relaxation_exponent"};
+    }
   // Physical mechanisms of each family (EffectSpec::mechanisms).
   auto mech = [&lib](const std::string& name, std::vector<std::vector<std::string>> groups) {
     for (EffectSpec& s : lib)
@@ -419,7 +428,12 @@ std::vector<EffectSpec> build_library() {
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
-  mech("pretension", {{"fs_share", "instant_share"}, {"clamp_exponent"}, {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"}});
+  // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
+  // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
+  mech("pretension", {{"fs_share", "instant_share"},
+                      {"clamp_exponent"},
+                      {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"},
+                      {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"}});
   // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the
   // run started (drum_start_share = 1, the convention of Eq. (4)'s x') or at the drum's zero (0).
   // Each mechanism that counts the rotation is tried from each origin; only the whole family frees

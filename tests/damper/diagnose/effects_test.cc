@@ -257,6 +257,45 @@ TEST(Effects, RestSettlesFromTheHeldForceTowardsItsRestLevel) {
   }
 }
 
+// residual_static's stretched settling (relaxation_exponent β < 1): from the moment the drum is at
+// rest (the rest weight w reaches 1/2 at t* = τ_s ln(v / (v_rest √ln 2)), when the held force F_h
+// is frozen) the force follows Kohlrausch's law towards (1 − m) F_h,
+// F(t) = (1 − m) F_h + m F_h exp(−((t − t*)/τ_r)^β), fast at first with a long tail; and the rest
+// clock starts again at the next stop (the second direction follows the same law from its own F_h).
+TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
+  BrfdParams p = coulomb_band();
+  const double dt = 1e-3, v = 1.0, m = 0.5, tau = 2.0, beta = 0.35;
+  p.effects.residual_static = ResidualStaticEffect{};
+  p.effects.residual_static->ratio = 0.0;
+  p.effects.residual_static->time_constant_s = tau;
+  p.effects.residual_static->relaxed_share = m;
+  p.effects.residual_static->relaxation_exponent = beta;
+  const double t_freeze = ResidualStaticEffect::kSpeedFilterS *
+                          std::log(v / (ResidualStaticEffect::kRestSpeedInPerS * std::sqrt(std::log(2.0))));
+  const int i_freeze = static_cast<int>(std::ceil(t_freeze / dt));  // first step with w >= 1/2
+  BrfdModel model(p);
+  DamperInput in;
+  for (const double dir : {1.0, -1.0}) {
+    const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+    in.drum_vel_in_per_s = dir * v;
+    for (int i = 0; i < 3000; ++i) model.step(in, dt);
+    in.drum_vel_in_per_s = 0.0;
+    double held = 0.0, worst = 0.0, exponential_gap = 0.0;
+    for (int i = 1; i <= 8000; ++i) {
+      const double f = model.step(in, dt);
+      if (i == i_freeze - 1) held = f;  // the force the rest starts from
+      if (i < i_freeze) continue;
+      const double t = (i - i_freeze + 1) * dt;
+      const double kww = (1.0 - m) * held + m * held * std::exp(-std::pow(t / tau, beta));
+      worst = std::max(worst, std::abs(f - kww));
+      exponential_gap = std::max(exponential_gap, std::abs(kww - ((1.0 - m) * held + m * held * std::exp(-t / tau))));
+    }
+    EXPECT_NEAR(held, dir * fc, 0.1 * fc) << "dir " << dir;
+    EXPECT_LT(worst, 1e-3 * fc) << "dir " << dir;
+    EXPECT_GT(exponential_gap, 0.1 * fc) << "dir " << dir;  // the law is not the exponential's
+  }
+}
+
 // Dahl's exponent n (transition_shape's dahl_exponent), with σ1 = σ2 = 0 and Fs = Fc (g = Fc): from
 // F = 0 at constant v > 0, dF/dx = σ0 (1 − F/Fc)^n, so the remaining share u = 1 − F/Fc is
 // u = (1 + (n − 1) σ0 x/Fc)^(−1/(n−1)): n = 2, u = 1/(1 + σ0 x/Fc); n = 0.5, u = (1 − σ0 x/(2 Fc))²
