@@ -180,9 +180,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double x1 = e.actuator_lag ? (second ? resp1_in_ : lag1_in_) : in.actuator1_in;
     const double x2 = e.actuator_lag ? (second ? resp2_in_ : lag2_in_) : in.actuator2_in;
     dfc = gain1 * (x1 - s.actuator1_initial_in) + gain2 * (x2 - s.actuator2_initial_in);
-    // pretension's clamping law: Fc = b N^q, N = 1 + ΔFc/b the tension ratio of Eq. (4).
+    // pretension's clamping law: ΔFc = k b (N^q − 1), N = 1 + ΔFc/b the tension ratio of Eq. (4).
     if (e.pretension && e.pretension->clamp_exponent != 1.0 && b > 0.0)
       dfc = b * (std::pow(std::max(1.0 + dfc / b, 0.01), e.pretension->clamp_exponent) - 1.0);
+    if (e.pretension) dfc *= e.pretension->clamp_gain;
   }
   double fc = b + dfc;
   double fs = forward ? p.fs_fwd_kip : p.fs_bwd_kip;

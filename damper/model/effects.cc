@@ -92,7 +92,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
-                  "wear_recovery_per_s", "wear_actuator_share"});
+                  "wear_recovery_per_s", "wear_actuator_share", "clamp_gain"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -101,6 +101,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.wear_saturation_kip_in = p.get_double_in("wear_saturation_kip_in", 0.0, 0.0, 1e9);
     x.wear_recovery_per_s = p.get_double_in("wear_recovery_per_s", 0.0, 0.0, 1e3);
     x.wear_actuator_share = p.get_double_in("wear_actuator_share", 1.0, 0.0, 1.0);
+    x.clamp_gain = p.get_double_in("clamp_gain", 1.0, 0.05, 20.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -319,14 +320,15 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law Fc = b N^clamp_exponent (dFc = b (N^q - 1))",
+      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain)",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
        {"clamp_exponent", 0.3, 3.0, 1.0, 0.67, true},
        {"wear_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
        {"wear_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
-       {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true}},
+       {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true},
+       {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -337,11 +339,12 @@ std::vector<EffectSpec> build_library() {
         p.wear_saturation_kip_in = t[4];
         p.wear_recovery_per_s = t[5];
         p.wear_actuator_share = t[6];
+        p.clamp_gain = t[7];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
-                                   p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share};
+                                   p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -431,7 +434,8 @@ std::vector<EffectSpec> build_library() {
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
   mech("pretension", {{"fs_share", "instant_share"},
-                      {"clamp_exponent"},
+                      {"clamp_exponent"},                // a power of the tension ratio
+                      {"clamp_exponent", "clamp_gain"},  // Eq. (4)'s curvature and gain apart
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"},
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"}});
   // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the

@@ -152,6 +152,12 @@
 ///    ΔFc = b (N^q − 1)): q < 1 a saturating contact (elastic multi-asperity contact, F ∝ N^(2/3),
 ///    Archard 1957; a lining that compacts), q > 1 a superlinear one (the band wraps tighter as it
 ///    is pulled, capstan-like). Steady sliding at a held tension: F = b N^q, tested.
+///    Its gain (clamp_gain = k, added 2026-11-27, in the clamping mechanism): ΔFc = k b (N^q − 1).
+///    q alone moves the slope at the pre-tension (q) and the curvature together; with k the two are
+///    apart: k = 1/q bends Eq. (4) with its slope kept (the Box-Cox form b (N^q − 1)/q: q → 0 a
+///    logarithmic saturation, q = 2 the capstan's e^(pL) to second order), q = 1 scales the
+///    increment (the scaling factors C of Table 2 off). Outside authors' capstan map
+///    b + (e^(pL) − 1)/p (blind set 16 t18) and saturating gain (set 15 t06) were outside q alone.
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
@@ -308,6 +314,9 @@ struct PretensionEffect {
   /// (1: every friction level scales, 0: only the band's own pre-tension b and Fs; the actuators
   /// hold their positions and keep their increment).
   double wear_actuator_share = 1.0;
+  /// k: gain of the clamping law, ΔFc = k b (N^q − 1) (1: Eq. 4's increment, or the power law;
+  /// k = 1/q keeps Eq. 4's slope at the pre-tension and bends the law only).
+  double clamp_gain = 1.0;
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

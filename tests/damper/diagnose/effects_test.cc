@@ -946,9 +946,10 @@ TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
   ASSERT_EQ(p.kind, DamperKind::semiactive);
   p.lugre.sigma1_kip_s_per_in = 0.0;
   p.lugre.sigma2_kip_s_per_in = 0.0;
-  for (double q : {0.6, 1.0, 1.8}) {
+  for (const auto& [q, k] : std::vector<std::pair<double, double>>{{0.6, 1.0}, {1.0, 1.0}, {1.8, 1.0}, {1.0, 0.7}, {2.0, 0.5}}) {
     for (double dx : {0.0, -0.005, -0.01}) {  // the actuators retract: more band tension
       p.effects.pretension = PretensionEffect{0.0, 0.0, 0.0, q};
+      p.effects.pretension->clamp_gain = k;
       BrfdModel m(p);
       BrfdParams plain = p;
       plain.effects = {};
@@ -967,7 +968,7 @@ TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
         in.drum_disp_in += 4.0 * 1e-4;
         f = m.step(in, 1e-4);
       }
-      EXPECT_NEAR(f, b * std::pow(n, q), 1e-6 * b) << "q " << q << " dx " << dx;
+      EXPECT_NEAR(f, b + k * b * (std::pow(n, q) - 1.0), 1e-6 * b) << "q " << q << " k " << k << " dx " << dx;
     }
   }
 }
