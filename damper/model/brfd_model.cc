@@ -88,7 +88,9 @@ void BrfdModel::reset() {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
+  lagged_velocity_ = 0.0;
   friction_work_kip_in_ = 0.0;
+  band_work_fwd_kip_in_ = band_work_bwd_kip_in_ = 0.0;
   reversal_travel_in_ = kEngagedTravelIn;
   last_direction_ = 0;
   drum_start_in_.reset();
@@ -210,7 +212,8 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
     factor *= std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
   }
-  if (e.asymmetry) factor *= e.asymmetry->factor(e.asymmetry->level, forward);
+  if (e.asymmetry)  // each band its level difference: constant, its own speed law, its own fade (effects.h)
+    factor *= e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
   if (e.velocity) factor *= rate_factor(speed);
   if (e.backlash && e.backlash->takeup_dip > 0.0) {
     // Grip lost at the last reversal, taken up with travel: the capacity, and the share f of it in
@@ -297,6 +300,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   f.tension = l.tension;
+  if (ve && ve->stribeck_lag_s > 0.0 && ve->lag_viscous_share > 0.0) {
+    f.viscous_velocity = v + ve->lag_viscous_share * (lagged_velocity_ - v);
+    f.viscous_lagged = true;
+  }
   if (e.self_energizing) {
     const double d = rotation_in(in);  // each band stretches in its own direction of rotation
     f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * (d < 0.0 ? e.self_energizing->band_spring_neg_ratio : 1.0) * d;
@@ -353,8 +360,14 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const AsymmetryEffect* as = params_.effects.asymmetry ? &*params_.effects.asymmetry : nullptr;
   const double sigma2 = as ? p.sigma2_kip_s_per_in * as->factor(as->viscous, v >= 0.0) : p.sigma2_kip_s_per_in;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
-  const double viscous =
-      sigma2 + (ve ? ve->added_viscous_kip_s_per_in + ve->quadratic_viscous_kip_s2_per_in2 * std::abs(v) : 0.0);
+  // The film: c_a v + c_q sgn(v) |v|^n (n = viscous_exponent; written as a coefficient of v), seen
+  // through velocity's lag (lag_viscous_share) where it has one.
+  const double vv = f.viscous_lagged ? f.viscous_velocity : v;
+  double film = 0.0;
+  if (ve && ve->quadratic_viscous_kip_s2_per_in2 != 0.0 && vv != 0.0)
+    film = ve->quadratic_viscous_kip_s2_per_in2 *
+           (ve->viscous_exponent == 2.0 ? std::abs(vv) : std::pow(std::abs(vv), ve->viscous_exponent - 1.0));
+  const double viscous = sigma2 + (ve ? ve->added_viscous_kip_s_per_in + film : 0.0);
   // Backlash: the bristle damping acts only on the engaged band; the viscous force keeps the share
   // slack_viscous_share of itself while the band is slack (effects.h).
   const double engaged = engaged_share(z);
@@ -364,7 +377,7 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const double band = (1.0 - slow) * spring_force_kip(z) +
                       (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0);
   return f.tension * band + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
-         (engaged + (1.0 - engaged) * slack_viscous) * viscous * v + f.band_spring_kip;
+         (engaged + (1.0 - engaged) * slack_viscous) * viscous * vv + f.band_spring_kip;
 }
 
 double BrfdModel::bristle_rate(double z_in, const DamperInput& in) const {
@@ -406,6 +419,16 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
     } else {
       friction_work_kip_in_ += power * dt_s;
     }
+  }
+  // asymmetry's band fade: the friction work of the band of the direction of motion, both relaxing.
+  const AsymmetryEffect* as = params_.effects.asymmetry ? &*params_.effects.asymmetry : nullptr;
+  if (as && as->band_fade_per_kip_in != 0.0) {
+    const double power = std::abs(force * in.drum_vel_in_per_s);
+    const double k = as->band_fade_recovery_per_s;
+    const double decay = k > 0.0 ? std::exp(-k * dt_s) : 1.0;
+    const double added = k > 0.0 ? power * (1.0 - decay) / k : power * dt_s;
+    band_work_fwd_kip_in_ = band_work_fwd_kip_in_ * decay + (in.drum_vel_in_per_s > 0.0 ? added : 0.0);
+    band_work_bwd_kip_in_ = band_work_bwd_kip_in_ * decay + (in.drum_vel_in_per_s < 0.0 ? added : 0.0);
   }
   return force;
 }
@@ -490,8 +513,11 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
       rest_time_s_ += dt_s;
     }
   }
-  if (e.velocity && e.velocity->stribeck_lag_s > 0.0)  // lagged speed of the Stribeck term: exact
-    stribeck_speed_ = speed + (stribeck_speed_ - speed) * std::exp(-dt_s / e.velocity->stribeck_lag_s);
+  if (e.velocity && e.velocity->stribeck_lag_s > 0.0) {  // lagged speed (Stribeck) and velocity: exact
+    const double keep = std::exp(-dt_s / e.velocity->stribeck_lag_s);
+    stribeck_speed_ = speed + (stribeck_speed_ - speed) * keep;
+    lagged_velocity_ = v + (lagged_velocity_ - v) * keep;
+  }
   if (e.velocity) {
     // Aging law dθ/dt = 1 − ṽ θ/D with the speed held over the step: exact.
     const double d = e.velocity->memory_in;

@@ -158,6 +158,8 @@ class BrfdModel final : public DamperModel {
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
     double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
     double band_spring_kip = 0.0;  // self_energizing's k_b d, kip
+    double viscous_velocity = 0.0;  // v_σ: the velocity the viscous force sees (velocity's lag_viscous_share)
+    bool viscous_lagged = false;
     double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
   };
   Frame frame(const DamperInput& in) const;
@@ -182,7 +184,10 @@ class BrfdModel final : public DamperModel {
   double slow_z_in_ = 0.0;                ///< z2 of transition_shape's slow contact element, in
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
+  double lagged_velocity_ = 0.0;          ///< v_L: the drum velocity through the same lag (signed), in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in
+  double band_work_fwd_kip_in_ = 0.0;     ///< W_fwd of asymmetry's band fade: ∫|F v| dt moving forward, kip·in
+  double band_work_bwd_kip_in_ = 0.0;     ///< W_bwd: the same moving backward
   static constexpr double kEngagedTravelIn = 1e3;  ///< s at the start: long past any reversal
   double reversal_travel_in_ = kEngagedTravelIn;  ///< s of backlash's take-up: drum travel since the last reversal, in
   int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)

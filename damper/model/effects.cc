@@ -62,7 +62,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("asymmetry")) {
     const common::YamlSection a = s.section("asymmetry");
-    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share"});
+    a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share",
+                  "band_speed_slope", "band_speed_exponent", "band_fade_per_kip_in", "band_fade_saturation_kip_in",
+                  "band_fade_recovery_per_s"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
@@ -70,13 +72,18 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.viscous = a.get_double_in("viscous", 0.0, -0.95, 0.95);
     x.motion_stiffness = a.get_double_in("motion_stiffness", 0.0, -0.95, 0.95);
     x.forward_share = a.get_double_in("forward_share", 0.5, 0.0, 1.0);
+    x.band_speed_slope = a.get_double_in("band_speed_slope", 0.0, -2.0, 2.0);
+    x.band_speed_exponent = a.get_double_in("band_speed_exponent", 1.0, 0.05, 10.0);
+    x.band_fade_per_kip_in = a.get_double_in("band_fade_per_kip_in", 0.0, -1.0, 1.0);
+    x.band_fade_saturation_kip_in = a.get_double_in("band_fade_saturation_kip_in", 3000.0, 1e-3, 1e9);
+    x.band_fade_recovery_per_s = a.get_double_in("band_fade_recovery_per_s", 0.0, 0.0, 100.0);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
     const common::YamlSection v = s.section("velocity");
     v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
-                  "stribeck_lag_s"});
+                  "stribeck_lag_s", "viscous_exponent", "lag_viscous_share"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -87,6 +94,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.direct_slope = v.get_double_in("direct_slope", 0.0, -2.0, 2.0);
     x.quadratic_viscous_kip_s2_per_in2 = v.get_double_in("quadratic_viscous_kip_s2_per_in2", 0.0, -100.0, 100.0);
     x.stribeck_lag_s = v.get_double_in("stribeck_lag_s", 0.0, 0.0, 100.0);
+    x.viscous_exponent = v.get_double_in("viscous_exponent", 2.0, 0.05, 10.0);
+    x.lag_viscous_share = v.get_double_in("lag_viscous_share", 0.0, 0.0, 1.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -262,8 +271,9 @@ std::vector<EffectSpec> build_library() {
         return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio};
       })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
-      "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force",
-      "Fc, Fs x (1 +- level), vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
+      "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force; one band's speed law, fade or run-in",
+      "Fc, Fs x (1 +- a_F), a_F = level + s_v |v|^m - f W0 (1 - exp(-W_dir/W0)), dW_dir/dt = |F v| [moving in dir] - k_f W_dir; "
+      "vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
       "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward; "
       "each +-a split as +2ah forward / -2a(1-h) backward, h = forward_share (0.5: even)",
       {{"level", -0.5, 0.5, 0.0, 0.1, false},
@@ -271,7 +281,12 @@ std::vector<EffectSpec> build_library() {
        {"stribeck_speed", -0.7, 0.7, 0.0, 0.2, false},
        {"viscous", -0.8, 0.8, 0.0, 0.2, false},
        {"motion_stiffness", -0.8, 0.8, 0.0, 0.3, false},
-       {"forward_share", 0.0, 1.0, 0.5, 1.0, false, true}},
+       {"forward_share", 0.0, 1.0, 0.5, 1.0, false, true},
+       {"band_speed_slope", -0.5, 0.5, 0.0, 0.05, false},
+       {"band_speed_exponent", 0.2, 3.0, 1.0, 0.5, true},
+       {"band_fade_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
+       {"band_fade_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
+       {"band_fade_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -281,14 +296,23 @@ std::vector<EffectSpec> build_library() {
         a.viscous = t[3];
         a.motion_stiffness = t[4];
         a.forward_share = t[5];
+        a.band_speed_slope = t[6];
+        a.band_speed_exponent = t[7];
+        a.band_fade_per_kip_in = t[8];
+        a.band_fade_saturation_kip_in = t[9];
+        a.band_fade_recovery_per_s = t[10];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
-        return std::vector<double>{a.level, a.stiffness, a.stribeck_speed, a.viscous, a.motion_stiffness, a.forward_share};
+        return std::vector<double>{a.level,           a.stiffness,           a.stribeck_speed,
+                                   a.viscous,         a.motion_stiffness,    a.forward_share,
+                                   a.band_speed_slope, a.band_speed_exponent, a.band_fade_per_kip_in,
+                                   a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
-      "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and quadratic viscous force, rate-and-state levels",
-      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v_L/vs|^n), v_L = |v| lagged by tau_L; F += c_a v + c_q v|v|; "
+      "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and power-law viscous force, rate-and-state levels",
+      "g(v) = phi Fc + phi (Fs - Fc) exp(-|v_L/vs|^n), v_L = |v| lagged by tau_L; F += c_a v + c_q sgn(v) |v|^n_f (n_f = viscous_exponent); "
+      "the viscous force sees v + lambda_v (v lagged by tau_L - v); "
       "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
       "seen through the aging law over a slip distance D (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
@@ -298,7 +322,9 @@ std::vector<EffectSpec> build_library() {
        {"memory_in", 0.0, 0.5, 0.0, 0.05, false},
        {"direct_slope", -0.8, 0.8, 0.0, 0.05, false},
        {"quadratic_viscous_kip_s2_per_in2", -0.4, 0.4, 0.0, 0.05, false},
-       {"stribeck_lag_s", 0.0, 1.0, 0.0, 0.05, false}},
+       {"stribeck_lag_s", 0.0, 1.0, 0.0, 0.05, false},
+       {"viscous_exponent", 0.2, 3.0, 2.0, 0.7, true},
+       {"lag_viscous_share", 0.0, 1.0, 0.0, 1.0, false, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -310,12 +336,15 @@ std::vector<EffectSpec> build_library() {
         v.direct_slope = t[5];
         v.quadratic_viscous_kip_s2_per_in2 = t[6];
         v.stribeck_lag_s = t[7];
+        v.viscous_exponent = t[8];
+        v.lag_viscous_share = t[9];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
         return std::vector<double>{v.stribeck_exponent, v.added_viscous_kip_s_per_in, v.rate_slope,
                                    v.reference_speed_in_per_s, v.memory_in, v.direct_slope,
-                                   v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s};
+                                   v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s, v.viscous_exponent,
+                                   v.lag_viscous_share};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
@@ -427,9 +456,14 @@ std::vector<EffectSpec> build_library() {
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
   // Each property by direction with where the difference sits (forward_share: both bands, or one).
   mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
-                     {"stribeck_speed", "viscous", "forward_share"}});
+                     {"stribeck_speed", "viscous", "forward_share"},
+                     // a band's own lining: its speed law; its fade (heat) or run-in with its own work
+                     {"band_speed_slope", "band_speed_exponent", "forward_share"},
+                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
+                    {"stribeck_exponent", "stribeck_lag_s", "lag_viscous_share"},               // and the whole curve's lag
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
+                    {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2", "viscous_exponent"},  // power-law film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).

@@ -97,6 +97,17 @@
 ///    and σ2), and the even split must move that band too: outside authors of seven of the blind sets
 ///    7-14 wrote an asymmetry so (σ0, v_s, σ2 or a drag term changed in one direction); with h, 11 of
 ///    the 15 asymmetry misses of those sets are named right (docs/diagnose.md, fifteenth set).
+///    Each band its own lining (added 2026-11-27, twelfth session: outside authors of blind sets 18
+///    and 19 wrote one band whose friction rises with speed, fades with its own heat or runs in, and
+///    the constant difference a_F could not follow them): the level coefficient of a direction is
+///      a_F(v, W_dir) = level + s_v (|v| / 1 in/s)^m − f W0 (1 − exp(−W_dir/W0)),
+///      dW_dir/dt = |F v| while the drum moves in that direction − k_f W_dir   (both directions relax),
+///    split by h as above (h = 1: the forward band's own speed law or fade, the backward band the
+///    base); s_v = band_speed_slope, m = band_speed_exponent (Grosch 1963: a lining's friction as a
+///    power of the sliding speed); f = band_fade_per_kip_in, W0 = band_fade_saturation_kip_in (0:
+///    linear in W), k_f = band_fade_recovery_per_s (cooling; Limpert, Brake Design and Safety, fade
+///    with lining temperature; f < 0 a run-in, Blau 1981). A fade of both bands with the total work
+///    is pretension's wear (u = 1), not an asymmetry.
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -119,6 +130,14 @@
 ///      the Stribeck term sees the speed through a first-order lag, dṽ_L/dt = (|v| − ṽ_L)/τ_L
 ///      (stribeck_lag_s = τ_L; frictional memory, Hess & Soom 1990: friction follows the
 ///      velocity late, a hysteresis loop in the friction-velocity plane; τ_L = 0: ṽ_L = |v|).
+///    and the film as a power law (viscous_exponent = n_f, added 2026-11-27 after a shear-thinning
+///    film of blind set 19 was outside the linear + quadratic pair): F += c_q sgn(v) |v|^n_f, c_q
+///    the film force at 1 in/s (n_f = 2: c_q v|v| above; n_f < 1: a shear-thinning film,
+///    Ostwald-de Waele; n_f → 0: a Coulomb-like drag that does not scale with the band tension).
+///    With lag_viscous_share = λ_v (twelfth session: an outside author's frictional lag of the
+///    Stribeck *and* the viscous term, blind set 19) the viscous force sees v_σ = v + λ_v (v_L − v),
+///    dv_L/dt = (v − v_L)/τ_L (the signed velocity through the same lag; Hess & Soom 1990: the whole
+///    friction-velocity curve follows the velocity late).
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -222,6 +241,7 @@
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
 
+#include <cmath>
 #include <functional>
 #include <map>
 #include <optional>
@@ -282,6 +302,29 @@ struct AsymmetryEffect {
   /// h: where the difference 2a between the directions sits: forward × (1 + 2 a h), backward ×
   /// (1 − 2 a (1 − h)); 0.5 (default) splits it evenly (± a), 1 forward band only, 0 backward only.
   double forward_share = 0.5;
+  /// One band's own speed law (band_speed_slope = s_v, band_speed_exponent = m): the level
+  /// difference grows with the sliding speed as s_v (|v| / 1 in/s)^m (a lining whose friction rises
+  /// or falls with speed, unlike the other band's); 0 = none.
+  double band_speed_slope = 0.0;
+  double band_speed_exponent = 1.0;
+  /// One band's own fade or run-in (band_fade_per_kip_in = f, band_fade_saturation_kip_in = W0,
+  /// band_fade_recovery_per_s = k_f): each band has its own friction work W_dir = ∫|F v| dt over the
+  /// motion in its direction, relaxing at k_f (cooling), and the level difference of that direction
+  /// falls by f W0 (1 − exp(−W_dir/W0)) (f > 0 fade, f < 0 run-in); 0 = none.
+  double band_fade_per_kip_in = 0.0;
+  double band_fade_saturation_kip_in = 3000.0;
+  double band_fade_recovery_per_s = 0.0;
+  /// The level coefficient of one direction at sliding speed `speed` with that band's work `work`.
+  double level_at(double speed, double work_kip_in) const {
+    double a = level;
+    if (band_speed_slope != 0.0)
+      a += band_speed_slope * (band_speed_exponent == 1.0 ? speed : std::pow(speed, band_speed_exponent));
+    if (band_fade_per_kip_in != 0.0) {
+      const double w0 = band_fade_saturation_kip_in;
+      a -= band_fade_per_kip_in * (w0 > 0.0 ? -w0 * std::expm1(-work_kip_in / w0) : work_kip_in);
+    }
+    return a;
+  }
   /// The factor of a property with asymmetry coefficient a in one direction (or on one side of z),
   /// at least 0.05.
   double factor(double a, bool forward) const {
@@ -300,6 +343,12 @@ struct VelocityEffect {
   double direct_slope = 0.0;                ///< a: direct rate effect on φ (rate-and-state "a"); 0 = none
   double quadratic_viscous_kip_s2_per_in2 = 0.0;  ///< c_q: force c_q v|v| in parallel with the friction
   double stribeck_lag_s = 0.0;              ///< τ_L: lag of the speed seen by the Stribeck term, s; 0 = none
+  /// n of the film force c_q sgn(v) |v|^n (n = 2: c_q v|v|, c_q in kip·s²/in²; otherwise c_q is the
+  /// film force at |v| = 1 in/s, kip; n < 1 a shear-thinning film, Ostwald-de Waele)
+  double viscous_exponent = 2.0;
+  /// λ_v: share of the viscous force (σ2 and the film) that sees the drum velocity through the lag
+  /// τ_L as well (frictional memory of the whole friction-velocity curve); 0 = the Stribeck term only
+  double lag_viscous_share = 0.0;
   static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).

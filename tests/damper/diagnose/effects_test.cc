@@ -693,6 +693,169 @@ TEST(Effects, VelocityQuadraticViscousRateAndStateAndStribeckLagAsTheirClosedFor
   EXPECT_GT(stribeck(v * (1.0 - std::exp(-0.05 / tau))) - stribeck(v), 0.05 * (p.lugre.fs_fwd_kip - p.lugre.fc_fwd_kip));
 }
 
+// The power-law film (viscous_exponent n): steady sliding F = g(v) + σ2 v + c_a v + c_q v^n. A
+// shear-thinning film (n < 1) drags more than the quadratic (n = 2) below 1 in/s and less above.
+TEST(Effects, PowerLawFilmAddsItsForceAtEverySteadySpeed) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const LugreParams& l = p.lugre;
+  auto stribeck = [&](double speed) {
+    const double r = speed / l.vs_in_per_s;
+    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
+  };
+  const double ca = -0.1, cq = 0.3;
+  for (const double n : {0.5, 2.0}) {
+    VelocityEffect film;
+    film.added_viscous_kip_s_per_in = ca;
+    film.quadratic_viscous_kip_s2_per_in2 = cq;
+    film.viscous_exponent = n;
+    p.effects.velocity = film;
+    for (const double v : {0.25, 1.0, 4.0}) {
+      BrfdModel m(p);
+      DamperInput in;
+      in.drum_vel_in_per_s = v;
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+      const double film_kip = ca * v + cq * std::pow(v, n);
+      EXPECT_NEAR(f, stribeck(v) + l.sigma2_kip_s_per_in * v + film_kip, 1e-6 * f) << "n " << n << " v " << v;
+    }
+  }
+}
+
+// asymmetry's own speed law of one band (forward_share h = 1: the forward band only): steady
+// sliding forward F = g(v) (1 + 2 s_v v^m), backward the base level unchanged; with h = 0 the
+// backward band takes the difference as (1 − 2 s_v v^m) and the forward band is the base.
+TEST(Effects, OneBandsOwnSpeedLawLeavesTheOtherBandAsTheBase) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  BrfdParams plain = p;
+  const double s = 0.08, m_exp = 0.5;
+  for (const double h : {1.0, 0.0}) {
+    AsymmetryEffect a;
+    a.forward_share = h;
+    a.band_speed_slope = s;
+    a.band_speed_exponent = m_exp;
+    p.effects.asymmetry = a;
+    for (const double v : {-4.0, -1.0, 1.0, 4.0}) {
+      BrfdModel with(p), without(plain);
+      DamperInput in;
+      in.drum_vel_in_per_s = v;
+      double f = 0.0, f0 = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        f = with.step(in, 1e-4);
+        f0 = without.step(in, 1e-4);
+      }
+      const double law = std::pow(std::abs(v), m_exp);
+      const double factor = v > 0.0 ? 1.0 + 2.0 * s * h * law : 1.0 - 2.0 * s * (1.0 - h) * law;
+      EXPECT_NEAR(f, f0 * factor, 1e-6 * std::abs(f0)) << "h " << h << " v " << v;
+      if ((v > 0.0) == (h == 1.0)) {
+        EXPECT_GT(std::abs(f - f0), 0.1 * s * std::abs(f0)) << "that band differs";
+      }
+    }
+  }
+}
+
+// asymmetry's band fade: each band its own friction work. With the even split (h = 1/2, f = w linear
+// in W) the forward level is × (1 − w W_fwd) and the backward one × (1 + w W_bwd). Forward steady
+// sliding gives F = g e^(−w g v t) (as Archard's closed form); a backward stroke after it slides at
+// its own law from the base backward level, F = −g_b e^(+w g_b v t), because its band had done no
+// work (with one work for both bands it would start from the forward band's);
+// with a cooling rate k the forward level settles where heating balances cooling,
+// F∞ = g k / (w g v + k).
+TEST(Effects, EachBandFadesWithItsOwnFrictionWorkAndCools) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double w = 0.002, v = 10.0 * p.lugre.vs_in_per_s, dt = 1e-4;
+  AsymmetryEffect a;
+  a.forward_share = 0.5;
+  a.band_fade_per_kip_in = w;
+  a.band_fade_saturation_kip_in = 0.0;  // linear in W
+  p.effects.asymmetry = a;
+  BrfdParams plain = p;
+  plain.effects = ModelEffects{};
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  const double g = BrfdModel(plain).stribeck_kip(in);
+  BrfdModel m(p);
+  double f = 0.0;
+  int checked = 0;
+  for (int i = 1; i <= 100000; ++i) {
+    in.drum_disp_in += v * dt;
+    f = m.step(in, dt);
+    if (i % 25000 == 0) {
+      EXPECT_NEAR(f, g * std::exp(-w * g * v * i * dt), 3e-3 * g) << "t " << i * dt << " s";
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 4);
+  ASSERT_LT(f, 0.8 * g) << "the forward band has faded";
+  in.drum_vel_in_per_s = -v;
+  BrfdModel fresh(plain);
+  double f_back = 0.0, f_base = 0.0;
+  for (int i = 0; i < 5000; ++i) {
+    in.drum_disp_in -= v * dt;
+    f_back = m.step(in, dt);
+    f_base = fresh.step(in, dt);
+  }
+  EXPECT_NEAR(f_back, f_base * std::exp(w * std::abs(f_base) * v * 0.5), 3e-3 * std::abs(f_base))
+      << "the backward band starts from no work";
+  const double k = 0.5;
+  p.effects.asymmetry->band_fade_recovery_per_s = k;
+  BrfdModel cooled(p);
+  in.drum_vel_in_per_s = v;
+  for (int i = 0; i < 200000; ++i) {
+    in.drum_disp_in += v * dt;
+    f = cooled.step(in, dt);
+  }
+  EXPECT_NEAR(f, g * k / (w * g * v + k), 3e-3 * g);
+}
+
+// velocity's lag_viscous_share λ_v: after a step from rest to v the viscous force sees the velocity
+// through the lag as well, F = g(v (1 − e^(−t/τ_L))) + σ2 v (1 − λ_v e^(−t/τ_L)) (σ0 large: the
+// bristle follows at once).
+TEST(Effects, FrictionalMemoryOfTheWholeCurveLagsTheViscousForceToo) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 1.0;
+  const LugreParams& l = p.lugre;
+  auto stribeck = [&](double speed) {
+    const double r = speed / l.vs_in_per_s;
+    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
+  };
+  const double tau = 0.2, v = 2.0;
+  for (const double share : {0.0, 0.5, 1.0}) {
+    VelocityEffect lag;
+    lag.stribeck_lag_s = tau;
+    lag.lag_viscous_share = share;
+    p.effects.velocity = lag;
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double t = 0.0, worst = 0.0, at_tau = 0.0;
+    for (int i = 0; i < 8000; ++i) {
+      const double f = m.step(in, 1e-4);
+      t += 1e-4;
+      const double e = std::exp(-t / tau);
+      const double expected = stribeck(v * (1.0 - e)) + l.sigma2_kip_s_per_in * v * (1.0 - share * e);
+      if (t > 0.05) worst = std::max(worst, std::abs(f - expected));  // after the bristle's own transient
+      if (i == 1999) at_tau = f;
+    }
+    EXPECT_LT(worst, 5e-3 * l.fs_fwd_kip) << "share " << share;
+    // At t = τ the lagged viscous force is short of σ2 v by σ2 v λ_v / e.
+    const double without_share = stribeck(v * (1.0 - std::exp(-1.0))) + l.sigma2_kip_s_per_in * v;
+    EXPECT_NEAR(without_share - at_tau, l.sigma2_kip_s_per_in * v * share * std::exp(-1.0), 5e-3 * l.fs_fwd_kip);
+  }
+}
+
 TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
   // h(u) = u²/(2ε) below ε, u − ε/2 beyond: continuous with continuous slope; bristle_for_force
   // inverts it; the stiffness dS/dz grows linearly from 0 at the end of the slack to σ0 at ε.
