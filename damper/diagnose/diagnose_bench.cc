@@ -288,17 +288,27 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5}));  // Stribeck speed and σ2 by direction
-  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5}));  // band stiffness by direction of motion
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // band stiffness by direction of motion
   // One band differs: the backward band's Stribeck speed × 1.6, the forward band as modelled.
-  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0}));
-  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0}));
-  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0}));
+  // One band's own lining: the forward band's friction rising as 0.1 |v|^0.5 (the backward band as
+  // modelled); the backward band fading with its own friction work (30 % over ~40 kip·in), cooling
+  // with a 5 s time constant.
+  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0}));
+  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
-  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15}));
+  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0}));
+  // A shear-thinning film in place of part of the viscous force: -0.3 v + 0.4 sgn(v) |v|^0.5.
+  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0}));
+  // Frictional memory of the whole friction-velocity curve: the Stribeck term and the viscous force
+  // see the velocity 0.1 s late.
+  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0}));
   c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0}));  // a saturating contact, Fc = b N^0.6

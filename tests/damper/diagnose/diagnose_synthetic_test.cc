@@ -626,6 +626,31 @@ TEST(DiagnoseSelection, GapNeverGrowsWhenAnEffectIsAdded) {
   }
 }
 
+// Every case of the full matrix builds its truth on a bench drive (a library case whose parameter
+// vector no longer matches its family throws here, not an hour into the benchmark), and every
+// effect case differs from the base model by more than the benchmark's lower noise level.
+TEST(DiagnoseBench, EveryCaseOfTheFullMatrixGeneratesItsHiddenEffect) {
+  const BrfdParams base = bench_base_model();
+  const std::vector<BrfdTest> drives = bench_drives(base, 512.0);
+  ASSERT_FALSE(drives.empty());
+  const BrfdTest& drive = drives.front();
+  for (const BenchCase& c : bench_cases(false)) {
+    if (c.records) continue;  // damper/synthetic shapes bring their own records
+    std::vector<double> truth;
+    ASSERT_NO_THROW(truth = c.truth(drive, base)) << c.name;
+    ASSERT_EQ(truth.size(), drive.size()) << c.name;
+    if (c.family == "none") continue;
+    double rms = 0.0;
+    std::vector<double> without;
+    for (const BenchCase& n : bench_cases(false))
+      if (n.family == "none" && !n.records) without = n.truth(drive, base);
+    ASSERT_EQ(without.size(), truth.size());
+    for (std::size_t i = 0; i < truth.size(); ++i) rms += (truth[i] - without[i]) * (truth[i] - without[i]);
+    rms = std::sqrt(rms / truth.size());
+    EXPECT_GT(rms, 0.02) << c.name << ": the hidden effect changes the force by " << rms << " kip RMS";
+  }
+}
+
 TEST(DiagnoseBench, CiSubsetIsCorrectWithoutFalsePositives) {
   BenchOptions bo;
   bo.quick = true;
