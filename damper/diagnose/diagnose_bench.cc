@@ -265,7 +265,7 @@ std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
     c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5}));
-    c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
+    c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
@@ -286,8 +286,11 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0}));
   // A stretched settling (β = 0.4) of 40 % of the held force: fast at first, a long tail.
   c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4}));
-  c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0}));
-  c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5}));
+  c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0, 0.0, 2.0}));
+  c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0}));
+  // A transport delay of 0.08 s; the actuators slewing at no more than 0.1 in/s.
+  c.push_back(library_case("actuator_lag", "delay", {0.0, 0.0, 1.0, 0.08, 2.0}));
+  c.push_back(library_case("actuator_lag", "rate_limit", {0.0, 0.0, 1.0, 0.0, 0.1}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
   c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
   c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // Stribeck speed and σ2 by direction

@@ -78,6 +78,11 @@ void BrfdModel::reset() {
   lag1_in_ = params_.semiactive.actuator1_initial_in;
   lag2_in_ = params_.semiactive.actuator2_initial_in;
   resp1_in_ = lag1_in_;
+  rated1_in_ = lag1_in_;
+  rated2_in_ = lag2_in_;
+  actuator_clock_s_ = 0.0;
+  actuator_history_.clear();
+  actuator_history_.push_back({0.0, lag1_in_, lag2_in_});  // at x'_k at the start and before it
   resp2_in_ = lag2_in_;
   resp1_rate_ = resp2_rate_ = 0.0;
   slow_speed_ = kInitialSlowSpeed;
@@ -459,10 +464,36 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     }
   }
   if (e.actuator_lag) {
+    // The chain: transport delay, rate limit, first-order lag, second-order response (effects.h).
+    double x1 = in.actuator1_in, x2 = in.actuator2_in;
+    if (e.actuator_lag->delay_s > 0.0) {
+      actuator_clock_s_ += dt_s;
+      actuator_history_.push_back({actuator_clock_s_, x1, x2});
+      const double seen = actuator_clock_s_ - e.actuator_lag->delay_s;
+      while (actuator_history_.size() >= 2 && actuator_history_[1][0] <= seen) actuator_history_.pop_front();
+      const std::array<double, 3>& a = actuator_history_[0];
+      if (actuator_history_.size() >= 2 && a[0] < seen) {
+        const std::array<double, 3>& b = actuator_history_[1];
+        const double w = (seen - a[0]) / (b[0] - a[0]);
+        x1 = a[1] + w * (b[1] - a[1]);
+        x2 = a[2] + w * (b[2] - a[2]);
+      } else {
+        x1 = a[1];
+        x2 = a[2];
+      }
+    }
+    const double limit = e.actuator_lag->rate_limit_in_per_s;
+    if (limit > 0.0 && limit < ActuatorLagEffect::kNoRateLimitInPerS) {
+      const double most = limit * dt_s;
+      rated1_in_ += std::clamp(x1 - rated1_in_, -most, most);
+      rated2_in_ += std::clamp(x2 - rated2_in_, -most, most);
+      x1 = rated1_in_;
+      x2 = rated2_in_;
+    }
     const double tau = e.actuator_lag->time_constant_s;
     const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;
-    lag1_in_ = in.actuator1_in + (lag1_in_ - in.actuator1_in) * keep;
-    lag2_in_ = in.actuator2_in + (lag2_in_ - in.actuator2_in) * keep;
+    lag1_in_ = x1 + (lag1_in_ - x1) * keep;
+    lag2_in_ = x2 + (lag2_in_ - x2) * keep;
     const double period = e.actuator_lag->natural_period_s;
     if (period > 0.0) {
       // Second-order response to x~ held over the step: semi-implicit sub-steps (h <= T/40),

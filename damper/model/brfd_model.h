@@ -14,6 +14,7 @@
 #include "damper/model/electric_actuator.h"
 
 #include <array>
+#include <deque>
 #include <string>
 #include <optional>
 #include <vector>
@@ -175,6 +176,10 @@ class BrfdModel final : public DamperModel {
   double z_in_ = 0.0;
   double lag1_in_ = 0.0, lag2_in_ = 0.0;  ///< x~_1, x~_2 of actuator_lag (first-order stage)
   double resp1_in_ = 0.0, resp2_in_ = 0.0;  ///< y_1, y_2 of actuator_lag (second-order stage)
+  /// actuator_lag's delay line: (time, x_1, x_2) back to t − t_d, oldest first; and its clock, s.
+  std::deque<std::array<double, 3>> actuator_history_;
+  double actuator_clock_s_ = 0.0;
+  double rated1_in_ = 0.0, rated2_in_ = 0.0;  ///< actuator positions after the rate limit, in
   double resp1_rate_ = 0.0, resp2_rate_ = 0.0;  ///< dy_k/dt, in/s
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s

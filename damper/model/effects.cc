@@ -53,11 +53,13 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("actuator_lag")) {
     const common::YamlSection a = s.section("actuator_lag");
-    a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio"});
+    a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio", "delay_s", "rate_limit_in_per_s"});
     ActuatorLagEffect x;
     x.time_constant_s = a.get_double_in("time_constant_s", 0.0, 100.0);
     x.natural_period_s = a.get_double_in("natural_period_s", 0.0, 0.0, 100.0);
     x.damping_ratio = a.get_double_in("damping_ratio", 1.0, 0.01, 100.0);
+    x.delay_s = a.get_double_in("delay_s", 0.0, 0.0, 10.0);
+    x.rate_limit_in_per_s = a.get_double_in("rate_limit_in_per_s", 0.0, 0.0, 1e6);
     e.actuator_lag = x;
   }
   if (s.has("asymmetry")) {
@@ -254,21 +256,26 @@ std::vector<EffectSpec> build_library() {
         return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.relaxation_exponent};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
-      "actuator_lag", "kinetic friction follows the electric actuator motion late (first- and second-order response)",
-      "Eq. (4) with y_k: dx~_k/dt = (x_k - x~_k)/tau_a, y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
+      "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
+      "Eq. (4) with y_k: x_d = x_k(t - t_d) moving at most r per s, dx~_k/dt = (x_d - x~_k)/tau_a, y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
       {{"time_constant_s", 0.0, 0.6, 0.0, 0.08, false},
-       {"natural_period_s", 0.0, 0.6, 0.0, 0.15, false},
-       {"damping_ratio", 0.2, 2.0, 1.0, 0.7, false}},
+       {"natural_period_s", 0.0, 1.5, 0.0, 0.15, false},
+       {"damping_ratio", 0.05, 2.0, 1.0, 0.3, true},
+       {"delay_s", 0.0, 0.3, 0.0, 0.05, false},
+       {"rate_limit_in_per_s", 0.02, 2.0, 2.0, 0.1, true}},
       &ModelEffects::actuator_lag,
       std::function<ActuatorLagEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ActuatorLagEffect a;
         a.time_constant_s = t[0];
         a.natural_period_s = t[1];
         a.damping_ratio = t[2];
+        a.delay_s = t[3];
+        a.rate_limit_in_per_s = t[4];
         return a;
       }),
       std::function<std::vector<double>(const ActuatorLagEffect&)>([](const ActuatorLagEffect& a) {
-        return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio};
+        return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio, a.delay_s,
+                                   a.rate_limit_in_per_s > 0.0 ? a.rate_limit_in_per_s : ActuatorLagEffect::kNoRateLimitInPerS};
       })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force; one band's speed law, fade or run-in",
@@ -453,7 +460,8 @@ std::vector<EffectSpec> build_library() {
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
-  mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"}});  // first, second order
+  mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
+                        {"delay_s"}, {"rate_limit_in_per_s"}});                        // transport delay, rate limit
   // Each property by direction with where the difference sits (forward_share: both bands, or one).
   mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
                      {"stribeck_speed", "viscous", "forward_share"},

@@ -77,6 +77,13 @@
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
 ///      dx̃_k/dt = (x_k − x̃_k)/τ_a,   ÿ_k = ω² (x̃_k − y_k) − 2ζω ẏ_k,  ω = 2π/T
 ///    (τ_a = 0: x̃ = x; T = 0: y = x̃); x̃_k(0) = y_k(0) = x'_k, ẏ_k(0) = 0.
+///    Before the lags (twelfth session; the classic servo-actuator chain of real-time hybrid
+///    testing, e.g. Horiuchi et al. 1999 delay, Dyke et al. 1995 actuator dynamics; an outside author's
+///    rate-limited actuator, blind set 17, was outside the family): a transport delay t_d
+///    (delay_s, x seen as x(t − t_d), x'_k before the start) and a rate limit r (rate_limit_in_per_s:
+///    the position moves towards the delayed one at most r per second; the diagnose search runs
+///    0.02-2 in/s; 0, or 2 in/s and above — five times the fastest actuator motion of the measured
+///    tests —, is no limit).
 ///  - asymmetry (level = a_F, stiffness = a_σ, stribeck_speed = a_v, viscous = a_2): direction
 ///    asymmetry beyond per-direction Fc/Fs (a different band is taut in each direction, so every
 ///    band property may differ, not only the levels):
@@ -291,6 +298,11 @@ struct ActuatorLagEffect {
   double time_constant_s = 0.0;   ///< τ_a, s (>= 0; 0 = no first-order lag)
   double natural_period_s = 0.0;  ///< T = 2π/ω of the second-order response, s (0 = none)
   double damping_ratio = 1.0;     ///< ζ of the second-order response (> 0)
+  double delay_s = 0.0;           ///< t_d: transport delay before the lags, s (0 = none)
+  double rate_limit_in_per_s = 0.0;  ///< r: the fastest the actuators move, in/s (0 or >= 2: no limit)
+  /// No limit from here on (the diagnose search's end): 5 × the fastest actuator motion of the
+  /// measured tests.
+  static constexpr double kNoRateLimitInPerS = 2.0;
 };
 /// Direction asymmetry (see file comment).
 struct AsymmetryEffect {

@@ -879,6 +879,58 @@ TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
   EXPECT_NEAR((m.spring_force_kip(0.2 + dz) - m.spring_force_kip(0.2)) / dz, s0, 1e-3 * s0);
 }
 
+// actuator_lag's transport delay and rate limit (drum at rest; Eq. (4) read back as the actuator
+// position it sees): with a delay t_d a ramp of actuator 1 is seen as x(t − t_d), x'_1 before t_d;
+// with a rate limit r a step Δx is seen as the ramp x'_1 + sign(Δx) min(r t, |Δx|).
+TEST(Effects, ActuatorDelayAndRateLimitAsTheirClosedForms) {
+  BrfdParams p = synthetic_base();
+  BrfdParams q = synthetic_base();
+  const BrfdModel plain(q);
+  const double x0 = p.semiactive.actuator1_initial_in, dt = 1.0 / 1024.0;
+  DamperInput in;
+  in.drum_vel_in_per_s = 0.0;
+  in.actuator2_in = p.semiactive.actuator2_initial_in;
+  in.actuator1_in = x0;
+  const double b = plain.kinetic_friction_kip(in);
+  in.actuator1_in = x0 - 0.01;
+  const double gain = (plain.kinetic_friction_kip(in) - b) / -0.01;  // kip/in
+  auto seen = [&](const BrfdModel& m, const DamperInput& at) { return x0 + (m.kinetic_friction_kip(at) - b) / gain; };
+  {
+    const double delay = 0.1, rate = -0.05;  // a retraction of 0.05 in/s
+    p.effects.actuator_lag = ActuatorLagEffect{0.0, 0.0, 1.0, delay, 0.0};
+    BrfdModel m(p);
+    double worst = 0.0;
+    for (int i = 1; i <= 512; ++i) {
+      const double t = i * dt;
+      in.actuator1_in = x0 + rate * t;
+      m.step(in, dt);
+      const double expected = x0 + rate * std::max(t - delay, 0.0);
+      worst = std::max(worst, std::abs(seen(m, in) - expected));
+    }
+    EXPECT_LT(worst, 1e-9);
+    EXPECT_GT(std::abs(rate) * delay, 1e-3) << "the delay shows: 5e-3 in behind";
+  }
+  {
+    const double limit = 0.1, dx = -0.02;  // reached after 0.2 s
+    p.effects.actuator_lag = ActuatorLagEffect{0.0, 0.0, 1.0, 0.0, limit};
+    BrfdModel m(p);
+    in.actuator1_in = x0 + dx;
+    double worst = 0.0;
+    for (int i = 1; i <= 512; ++i) {
+      const double t = i * dt;
+      m.step(in, dt);
+      const double expected = x0 - std::min(limit * t, -dx);
+      worst = std::max(worst, std::abs(seen(m, in) - expected));
+    }
+    EXPECT_LT(worst, 1e-9);
+    // 2 in/s is no limit (the search's end): the step is seen at once.
+    p.effects.actuator_lag = ActuatorLagEffect{0.0, 0.0, 1.0, 0.0, ActuatorLagEffect::kNoRateLimitInPerS};
+    BrfdModel free(p);
+    free.step(in, dt);
+    EXPECT_NEAR(seen(free, in), x0 + dx, 1e-9);
+  }
+}
+
 TEST(Effects, SecondOrderActuatorFollowsTheClosedFormStepResponse) {
   // Drum at rest (z frozen), actuator 1 stepped by Δx: Eq. (4) sees y(t) of
   // ÿ + 2ζω ẏ + ω² y = ω² Δx: y = Δx [1 − e^(−ζωt) (cos ω_d t + ζ/√(1−ζ²) sin ω_d t)].
