@@ -610,6 +610,22 @@ TEST(Effects, VelocityEffectGivesParallelViscousAndLogRateLevels) {
   EXPECT_LT(worst, 2e-3 * p.lugre.fc_fwd_kip);
 }
 
+// A passive base with a stiff bristle (σ0 = 3000 kip/in: it follows the friction law within ~1e-3
+// in of slip) and no bristle damping, for closed forms of the friction-velocity law.
+BrfdParams stiff_passive_base() {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  return p;
+}
+
+// Eq. (2) forward: Fc + (Fs − Fc) exp(−(v/v_s)²).
+double forward_stribeck_kip(const LugreParams& l, double speed) {
+  const double r = speed / l.vs_in_per_s;
+  return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
+}
+
 // The three velocity terms added for shapes a blind set showed missing, each against its closed form
 // (σ0 large, so the bristle follows in ~1e-3 in of slip):
 //  - quadratic viscous: steady sliding F = g(v) + (σ2 + c_q |v|) v;
@@ -618,15 +634,9 @@ TEST(Effects, VelocityEffectGivesParallelViscousAndLogRateLevels) {
 //    (v' = v + 0.01 in/s);
 //  - Stribeck lag: after a step from rest to v, g sees v (1 − e^(−t/τ_L)).
 TEST(Effects, VelocityQuadraticViscousRateAndStateAndStribeckLagAsTheirClosedForms) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma0_kip_per_in = 3000.0;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
+  BrfdParams p = stiff_passive_base();
   const LugreParams& l = p.lugre;
-  auto stribeck = [&](double speed) {
-    const double r = speed / l.vs_in_per_s;
-    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
-  };
+  auto stribeck = [&](double speed) { return forward_stribeck_kip(l, speed); };
   const double cq = 0.12;
   VelocityEffect q;
   q.quadratic_viscous_kip_s2_per_in2 = cq;
@@ -693,18 +703,12 @@ TEST(Effects, VelocityQuadraticViscousRateAndStateAndStribeckLagAsTheirClosedFor
   EXPECT_GT(stribeck(v * (1.0 - std::exp(-0.05 / tau))) - stribeck(v), 0.05 * (p.lugre.fs_fwd_kip - p.lugre.fc_fwd_kip));
 }
 
-// The power-law film (viscous_exponent n): steady sliding F = g(v) + σ2 v + c_a v + c_q v^n. A
-// shear-thinning film (n < 1) drags more than the quadratic (n = 2) below 1 in/s and less above.
+// The power-law film (viscous_exponent n): steady sliding F = g(v) + σ2 v + c_a v + c_q v^n, for a
+// shear-thinning film (n < 1) and the quadratic one (n = 2).
 TEST(Effects, PowerLawFilmAddsItsForceAtEverySteadySpeed) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma0_kip_per_in = 3000.0;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
+  BrfdParams p = stiff_passive_base();
   const LugreParams& l = p.lugre;
-  auto stribeck = [&](double speed) {
-    const double r = speed / l.vs_in_per_s;
-    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
-  };
+  auto stribeck = [&](double speed) { return forward_stribeck_kip(l, speed); };
   const double ca = -0.1, cq = 0.3;
   for (const double n : {0.5, 2.0}) {
     VelocityEffect film;
@@ -713,11 +717,7 @@ TEST(Effects, PowerLawFilmAddsItsForceAtEverySteadySpeed) {
     film.viscous_exponent = n;
     p.effects.velocity = film;
     for (const double v : {0.25, 1.0, 4.0}) {
-      BrfdModel m(p);
-      DamperInput in;
-      in.drum_vel_in_per_s = v;
-      double f = 0.0;
-      for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+      const double f = steady_sliding_force_kip(p, v);
       const double film_kip = ca * v + cq * std::pow(v, n);
       EXPECT_NEAR(f, stribeck(v) + l.sigma2_kip_s_per_in * v + film_kip, 1e-6 * f) << "n " << n << " v " << v;
     }
@@ -728,10 +728,7 @@ TEST(Effects, PowerLawFilmAddsItsForceAtEverySteadySpeed) {
 // sliding forward F = g(v) (1 + 2 s_v v^m), backward the base level unchanged; with h = 0 the
 // backward band takes the difference as (1 − 2 s_v v^m) and the forward band is the base.
 TEST(Effects, OneBandsOwnSpeedLawLeavesTheOtherBandAsTheBase) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma0_kip_per_in = 3000.0;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
+  BrfdParams p = stiff_passive_base();
   p.lugre.sigma2_kip_s_per_in = 0.0;
   BrfdParams plain = p;
   const double s = 0.08, m_exp = 0.5;
@@ -742,14 +739,7 @@ TEST(Effects, OneBandsOwnSpeedLawLeavesTheOtherBandAsTheBase) {
     a.band_speed_exponent = m_exp;
     p.effects.asymmetry = a;
     for (const double v : {-4.0, -1.0, 1.0, 4.0}) {
-      BrfdModel with(p), without(plain);
-      DamperInput in;
-      in.drum_vel_in_per_s = v;
-      double f = 0.0, f0 = 0.0;
-      for (int i = 0; i < 20000; ++i) {
-        f = with.step(in, 1e-4);
-        f0 = without.step(in, 1e-4);
-      }
+      const double f = steady_sliding_force_kip(p, v), f0 = steady_sliding_force_kip(plain, v);
       const double law = std::pow(std::abs(v), m_exp);
       const double factor = v > 0.0 ? 1.0 + 2.0 * s * h * law : 1.0 - 2.0 * s * (1.0 - h) * law;
       EXPECT_NEAR(f, f0 * factor, 1e-6 * std::abs(f0)) << "h " << h << " v " << v;
@@ -821,16 +811,10 @@ TEST(Effects, EachBandFadesWithItsOwnFrictionWorkAndCools) {
 // through the lag as well, F = g(v (1 − e^(−t/τ_L))) + σ2 v (1 − λ_v e^(−t/τ_L)) (σ0 large: the
 // bristle follows at once).
 TEST(Effects, FrictionalMemoryOfTheWholeCurveLagsTheViscousForceToo) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma0_kip_per_in = 3000.0;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
+  BrfdParams p = stiff_passive_base();
   p.lugre.sigma2_kip_s_per_in = 1.0;
   const LugreParams& l = p.lugre;
-  auto stribeck = [&](double speed) {
-    const double r = speed / l.vs_in_per_s;
-    return l.fc_fwd_kip + (l.fs_fwd_kip - l.fc_fwd_kip) * std::exp(-r * r);
-  };
+  auto stribeck = [&](double speed) { return forward_stribeck_kip(l, speed); };
   const double tau = 0.2, v = 2.0;
   for (const double share : {0.0, 0.5, 1.0}) {
     VelocityEffect lag;
