@@ -323,16 +323,18 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // Eq. (4) bent with its slope at the pre-tension kept (Box-Cox, q = 2, k = 1/2: the capstan's
   // exponential to second order).
   c.push_back(library_case("pretension", "curved", {0.0, 0.0, 0.0, 2.0, 3000.0, 0.0, 1.0, 0.5}));
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0}));  // band-force feedback only
-  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0}));   // strong wrap: ~ capstan e^(±κd)
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0}));  // band-force feedback only
+  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0}));   // strong wrap: ~ capstan e^(±κd)
   // Self-servo per kip of band force, the same gain both ways: g (1 + 0.06 |F|).
-  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0}));  // band-stretch spring in parallel
+  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0}));  // band-stretch spring in parallel
   // Each band's own spring: the one stretched backward at 0.3 of the forward one's rate. (The bench
   // records start at the drum's zero, as the measured tests do, so drum_start_share is not judged here.)
-  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3, 1.0}));
+  // A leading/trailing self-servo: +0.06 per kip of band force moving forward, −0.06 backward.
+  c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0}));
   c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));  // a rounder transition than LuGre

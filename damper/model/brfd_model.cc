@@ -318,6 +318,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
     // φ_s = 1 − η + (η/b + χ)|N S(z)|: η relative to the direction's passive b, χ per kip (effects.h).
     f.servo_share = e.self_energizing->band_force_share;
     f.servo = f.servo_share / std::max(l.passive, 1e-6) + e.self_energizing->band_force_per_kip;
+    if (!forward) {  // the trailing (or equally energized) band: its gains × ρ_s
+      f.servo_share *= e.self_energizing->servo_backward_ratio;
+      f.servo *= e.self_energizing->servo_backward_ratio;
+    }
     f.servo_on = true;
   }
   if (e.residual_static) {

@@ -118,7 +118,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("self_energizing")) {
     const common::YamlSection p = s.section("self_energizing");
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
-                  "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio"});
+                  "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio",
+                  "servo_backward_ratio"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -129,6 +130,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_spring_kip_per_in = p.get_double_in("band_spring_kip_per_in", 0.0, -20.0, 20.0);
     x.drum_start_share = p.get_double_in("drum_start_share", 0.0, 0.0, 1.0);
     x.band_spring_neg_ratio = p.get_double_in("band_spring_neg_ratio", 1.0, 0.0, 10.0);
+    x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -1.0, 1.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -394,7 +396,8 @@ std::vector<EffectSpec> build_library() {
        {"band_spring_kip_per_in", -2.0, 2.0, 0.0, 0.3, false},
        {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false},
        {"drum_start_share", 0.0, 1.0, 0.0, 1.0, false},
-       {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true}},
+       {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true},
+       {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -407,12 +410,13 @@ std::vector<EffectSpec> build_library() {
         p.band_force_per_kip = t[6];
         p.drum_start_share = t[7];
         p.band_spring_neg_ratio = t[8];
+        p.servo_backward_ratio = t[9];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
                                    p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
-                                   p.drum_start_share, p.band_spring_neg_ratio};
+                                   p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -488,6 +492,7 @@ std::vector<EffectSpec> build_library() {
   mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share=1"},
                            {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
+                           {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
                            {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},
                            {"band_spring_kip_per_in", "band_spring_neg_ratio"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
@@ -503,11 +508,17 @@ std::vector<EffectSpec> build_library() {
   // sliding (blind set 14 t14: a spring recovered to the noise floor, 100 % of the excess, had 49 %
   // of its gain in sliding/actuators and was not named). Not at the final rest: the force it holds
   // there does not change after the stop.
+  // The self-servo feeds the force the band carries back into its grip: it acts through the loop after
+  // a reversal (the unloaded band grips less, the reloading one more) as well as in sliding (twelfth
+  // session: a servo by direction recovered 100 % of blind set 21 t11's excess with half its gain
+  // after reversals, and was not named).
   for (EffectSpec& s : lib)
     if (s.name == "self_energizing")
-      for (std::size_t m = 0; m < s.mechanisms.size(); ++m)
-        if (std::find(s.mechanisms[m].begin(), s.mechanisms[m].end(), "band_spring_kip_per_in") != s.mechanisms[m].end())
-          s.mechanism_regimes[m] = {"sliding", "actuators", "reversal", "sticking"};
+      for (std::size_t m = 0; m < s.mechanisms.size(); ++m) {
+        auto has = [&](const char* p) { return std::find(s.mechanisms[m].begin(), s.mechanisms[m].end(), p) != s.mechanisms[m].end(); };
+        if (has("band_spring_kip_per_in")) s.mechanism_regimes[m] = {"sliding", "actuators", "reversal", "sticking"};
+        if (has("band_force_per_kip")) s.mechanism_regimes[m] = {"sliding", "actuators", "reversal"};
+      }
   // A sharper transition (α > 1) acts within the first travel after a reversal; a smoother one
   // (α < 1) approaches the sliding force α times as fast as LuGre, well into the stroke.
   sig("transition_shape", {"reversal", "sticking", "sliding"}, {"backlash", "residual_static", "velocity"});

@@ -390,6 +390,9 @@ struct SelfEnergizingEffect {
   double band_force_per_kip = 0.0;  ///< χ: self-servo per kip of carried band force (absolute), 1/kip
   double drum_start_share = 0.0;  ///< r in [0, 1]: d = drum displacement − r × its value at the start
   double band_spring_neg_ratio = 1.0;  ///< ρ: the band spring's rate for d < 0 is ρ k_b (1: one linear spring)
+  /// ρ_s in [−1, 1]: the self-servo's gains η, χ moving backward are ρ_s × those moving forward (1: the
+  /// same both ways; −1: energizing one way and de-energizing the other, a leading/trailing shoe)
+  double servo_backward_ratio = 1.0;
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

@@ -1004,13 +1004,17 @@ TEST(Effects, SelfServoAmplifiesATensionRaisedByTheActuatorsAsItsClosedForm) {
 
 // self_energizing's absolute self-servo χ (band_force_per_kip): g (1 + χ |F|) in the bristle law, so
 // in steady sliding F = g/(1 − χ g), the same χ in both directions whatever each direction's b
-// (η/b, the relative form, differs by b). Closed form at v >> v_s, σ1 = σ2 = 0, passive.
-TEST(Effects, AbsoluteSelfServoGivesTheSameGainPerKipInBothDirections) {
+// (η/b, the relative form, differs by b); moving backward the gain is ρ_s χ (servo_backward_ratio:
+// 1 the same, −1 a trailing band that de-energizes), F = −g_b/(1 − ρ_s χ g_b). Closed form at
+// v >> v_s, σ1 = σ2 = 0, passive.
+TEST(Effects, AbsoluteSelfServoGainPerKipByDirection) {
   BrfdParams p = coulomb_band();
   ASSERT_NE(p.lugre.fc_fwd_kip, p.lugre.fc_bwd_kip);
+  for (const double ratio : {1.0, -1.0, 0.5})
   for (double chi : {-0.08, 0.05, 0.1}) {
     p.effects.self_energizing = SelfEnergizingEffect{};
     p.effects.self_energizing->band_force_per_kip = chi;
+    p.effects.self_energizing->servo_backward_ratio = ratio;  // backward: χ ρ_s (−1: a trailing band)
     BrfdModel m(p);
     DamperInput in;
     for (const double dir : {1.0, -1.0}) {
@@ -1021,8 +1025,9 @@ TEST(Effects, AbsoluteSelfServoGivesTheSameGainPerKipInBothDirections) {
         f = m.step(in, 1e-4);
       }
       const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
-      ASSERT_GT(1.0 - chi * g, 1.0 / 3.0);  // inside the clamp of φ_s
-      EXPECT_NEAR(f, dir * g / (1.0 - chi * g), 1e-6 * g) << "chi " << chi << " dir " << dir;
+      const double gain = dir > 0 ? chi : chi * ratio;
+      ASSERT_GT(1.0 - gain * g, 1.0 / 3.0);  // inside the clamp of φ_s
+      EXPECT_NEAR(f, dir * g / (1.0 - gain * g), 1e-6 * g) << "chi " << chi << " dir " << dir << " ratio " << ratio;
     }
   }
 }
