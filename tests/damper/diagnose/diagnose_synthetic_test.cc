@@ -446,19 +446,24 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     }
   }
   // self_energizing: the rotation and the band spring each from the start and from the drum's zero,
-  // the self-servo, the whole family. The band spring, a force in parallel with the friction, has its
-  // own regimes (every state of the drum but the final rest); the others keep the family's.
+  // the self-servo and the self-servo by direction, the whole family. The band spring, a force in
+  // parallel with the friction, has its own regimes (every state of the drum but the final rest); the
+  // self-servo acts through the loop after a reversal too; the others keep the family's.
   const std::vector<EffectSpec> se = candidate_subfamilies(effect_spec("self_energizing"), 0);
-  EXPECT_EQ(se.size(), 6u);
-  for (const EffectSpec& sub : se) {
-    const bool spring = std::find_if(sub.parameters.begin(), sub.parameters.end(), [](const EffectParameter& p) {
-                          return p.name == "band_spring_kip_per_in";
-                        }) != sub.parameters.end() &&
-                        sub.parameters.size() == 2;
-    const std::vector<std::string> want = spring ? std::vector<std::string>{"sliding", "actuators", "reversal", "sticking"}
-                                                 : effect_spec("self_energizing").regimes;
+  EXPECT_EQ(se.size(), 7u);
+  for (std::size_t k = 0; k + 1 < se.size(); ++k) {
+    const EffectSpec& sub = se[k];
+    auto has = [&sub](const char* name) {
+      return std::find_if(sub.parameters.begin(), sub.parameters.end(),
+                          [name](const EffectParameter& p) { return p.name == name; }) != sub.parameters.end();
+    };
+    const std::vector<std::string> want =
+        has("band_spring_kip_per_in") ? std::vector<std::string>{"sliding", "actuators", "reversal", "sticking"}
+        : has("band_force_per_kip")   ? std::vector<std::string>{"sliding", "actuators", "reversal"}
+                                      : effect_spec("self_energizing").regimes;
     EXPECT_EQ(sub.regimes, want) << sub.subfamily;
   }
+  EXPECT_EQ(se.back().regimes, effect_spec("self_energizing").regimes) << "the whole family";
   EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 4u);  // slack band, take-up, play, whole
 }
 
