@@ -170,7 +170,7 @@ std::string describe(Regime r) {
     case Regime::reversal: return "right after a velocity reversal";
     case Regime::sticking: return "sticking at low speed";
     case Regime::actuators: return "while the electric actuators move";
-    case Regime::after_stop: return "after the excitation stops";
+    case Regime::after_stop: return "at rest after the drum stops";
     case Regime::chatter: return "high-frequency chatter";
   }
   return "?";
@@ -317,12 +317,30 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
       sign = now;
     }
   }
+  // Rests between strokes: the drum stays within rest_band_in of where it stopped for at least
+  // min_rest_s (blind sets 20 and 21: relaxations at the stops between strokes were counted as
+  // "right after a reversal", so residual_static's gain there was not its own).
+  const std::size_t min_rest = static_cast<std::size_t>(std::ceil(o.min_rest_s / t.dt_s));
+  for (std::size_t i = 0; i < rest;) {
+    std::size_t j = i + 1;
+    while (j < rest && std::abs(d[j] - d[i]) <= o.rest_band_in) ++j;
+    if (j - i >= min_rest) {
+      s.rests.push_back({i, j});
+      i = j;
+    } else {
+      ++i;
+    }
+  }
+  if (rest < n) s.rests.push_back({rest, n});
+  std::vector<std::uint8_t> resting(n, 0);
+  for (const Segmentation::Rest& r : s.rests)
+    for (std::size_t i = r.begin; i < r.end; ++i) resting[i] = 1;
   std::size_t rev_k = 0;
   double rev_disp = d[0];  // the motion start counts as a reversal
   for (std::size_t i = 0; i < n; ++i) {
     while (rev_k < s.reversals.size() && s.reversals[rev_k] <= i) rev_disp = d[s.reversals[rev_k++]];
     Regime drum = Regime::sliding;
-    if (i >= rest) drum = Regime::after_stop;
+    if (resting[i]) drum = Regime::after_stop;
     else if (std::abs(d[i] - rev_disp) < o.reversal_travel_in) drum = Regime::reversal;
     else if (std::abs(v[i]) < v_stick) drum = Regime::sticking;
     s.drum_regime[i] = drum;

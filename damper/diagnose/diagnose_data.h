@@ -49,9 +49,10 @@ struct SegmentationOptions {
   double reversal_travel_in = 0.25;
   /// "Sticking at low speed": |v| below this fraction of the 95th percentile of |v|.
   double sticking_speed_fraction = 0.15;
-  /// "After the excitation stops": the drum stays within this of its final position, in.
+  /// "At rest": the drum stays within this of the position where it stopped (for the final rest:
+  /// of its final position), in.
   double rest_band_in = 0.01;
-  /// Minimum duration of the final rest segment to count as one, s.
+  /// Minimum duration of a rest (between strokes or final) to count as one, s.
   double min_rest_s = 0.2;
   /// Passive records (actuators never move): fraction of the record used as the passive
   /// (base identification) window, extended to the next drum cycle boundary.
@@ -68,6 +69,14 @@ struct Segmentation {
   bool actuated = false;                 ///< the actuators move in this record
   std::vector<std::size_t> reversals;    ///< sample indices of drum reversals (displacement extrema)
   std::size_t rest_begin = 0;            ///< first sample after the excitation stops (= size if none)
+  /// Every rest of the drum, [begin, end): the drum stays within rest_band_in of where it stopped
+  /// for at least min_rest_s — the stops between strokes as well as the final rest (the last one,
+  /// ending at the record's end, when there is a final rest). Their samples are the after_stop
+  /// regime: a held force settles there whether or not the excitation resumes later.
+  struct Rest {
+    std::size_t begin, end;
+  };
+  std::vector<Rest> rests;
   std::vector<std::uint8_t> train;       ///< per sample: 1 training, 0 held-out
   std::vector<Regime> regime;            ///< per sample, time-domain regime
   std::vector<std::uint8_t> actuators_moving;  ///< per sample: the actuators move (whatever the regime)

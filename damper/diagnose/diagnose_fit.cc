@@ -73,6 +73,10 @@ DiagnoseRecord decimate(const DiagnoseRecord& r, std::size_t k) {
   auto scale = [k](std::size_t i) { return (i + k - 1) / k; };
   d.seg.passive_end = scale(r.seg.passive_end);
   d.seg.rest_begin = scale(r.seg.rest_begin);
+  for (Segmentation::Rest& x : d.seg.rests) {
+    x.begin = scale(x.begin);
+    x.end = scale(x.end);
+  }
   for (std::size_t& x : d.seg.reversals) x = x / k;
   for (Segmentation::Span& sp : d.seg.spans) {
     sp.begin = scale(sp.begin);

@@ -78,16 +78,21 @@ RegimeEnergy fold_energy(const std::vector<DiagnoseRecord>& recs, const Fold& fo
   return e;
 }
 
-// Mean of the low-frequency residual `l` over the first `window_s` of the final rest (the level
-// the drum stopped with), or 0 when the record has no final rest.
-double level_at_stop(const std::vector<double>& l, const Segmentation& seg, double dt_s, double window_s) {
-  std::size_t i = 0;
-  while (i < seg.regime.size() && seg.regime[i] != Regime::after_stop) ++i;
-  const std::size_t end = std::min(seg.regime.size(), i + std::max<std::size_t>(1, static_cast<std::size_t>(window_s / dt_s)));
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (; i < end && seg.regime[i] == Regime::after_stop; ++i, ++n) sum += l[i];
-  return n ? sum / static_cast<double>(n) : 0.0;
+// Per sample of each rest (Segmentation::rests, the stops between strokes and the final rest):
+// the mean of the low-frequency residual `l` over the first `window_s` of that rest (the level the
+// drum stopped with); 0 elsewhere.
+std::vector<double> levels_at_stops(const std::vector<double>& l, const Segmentation& seg, double dt_s, double window_s) {
+  std::vector<double> c(l.size(), 0.0);
+  const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(window_s / dt_s));
+  for (const Segmentation::Rest& r : seg.rests) {
+    const std::size_t end = std::min(l.size(), r.end), head = std::min(end, r.begin + w);
+    if (r.begin >= head) continue;
+    double sum = 0.0;
+    for (std::size_t i = r.begin; i < head; ++i) sum += l[i];
+    const double level = sum / static_cast<double>(head - r.begin);
+    for (std::size_t i = r.begin; i < end; ++i) c[i] = level;
+  }
+  return c;
 }
 
 // Sums of the signature over the folds: gain, samples and null residual energy, in the effect's own
@@ -125,8 +130,8 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       r1[i] = fp.pred[p.record][i] - r.test.force_kip[i];
     }
     const std::vector<double> l0 = low_frequency_part(r0, r.test.dt_s, so), l1 = low_frequency_part(r1, r.test.dt_s, so);
-    const double c0 = level_at_stop(l0, r.seg, r.test.dt_s, kStopLevelS);
-    const double c1 = level_at_stop(l1, r.seg, r.test.dt_s, kStopLevelS);
+    const std::vector<double> c0 = levels_at_stops(l0, r.seg, r.test.dt_s, kStopLevelS);
+    const std::vector<double> c1 = levels_at_stops(l1, r.seg, r.test.dt_s, kStopLevelS);
     for (std::size_t i = p.begin; i < p.end; ++i) {
       const Regime g = r.seg.regime[i];
       // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
@@ -139,7 +144,7 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
         // physics (or the actuators', where they move). An effect of the moving drum that takes
         // away the change at rest has its gain there counted elsewhere (blind set 17 t07: a speed
         // law's capacity at a near-zero speed let the held force creep, and was named velocity).
-        const double d0 = l0[i] - c0, d1 = l1[i] - c1;
+        const double d0 = l0[i] - c0[i], d1 = l1[i] - c1[i];
         (at_rest || moving ? own : other) += d0 * d0 - d1 * d1;
         if (!at_rest && !moving) rest += d0 * d0 - d1 * d1;
         tally.samples += 1.0;
@@ -286,14 +291,20 @@ std::vector<double> rest_held_forces(const std::vector<DiagnoseRecord>& recs,
   std::vector<double> held;
   for (std::size_t k = 0; k < recs.size() && k < mask.size(); ++k) {
     const DiagnoseRecord& r = recs[k];
-    const std::size_t b = r.seg.rest_begin, n = r.test.size();
-    if (b >= n || mask[k].size() != n) continue;
-    if (std::find(mask[k].begin() + static_cast<std::ptrdiff_t>(b), mask[k].end(), 1) == mask[k].end()) continue;
-    const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.01 / r.test.dt_s)));
-    double sum = 0.0;
-    std::size_t m = 0;
-    for (std::size_t i = b; i < n && i < b + w; ++i, ++m) sum += r.test.force_kip[i];
-    held.push_back(sum / static_cast<double>(m));
+    const std::size_t n = r.test.size();
+    if (mask[k].size() != n) continue;
+    for (const Segmentation::Rest& rest : r.seg.rests) {
+      const std::size_t b = rest.begin, e = std::min(rest.end, n);
+      if (b >= e) continue;
+      if (std::find(mask[k].begin() + static_cast<std::ptrdiff_t>(b), mask[k].begin() + static_cast<std::ptrdiff_t>(e), 1) ==
+          mask[k].begin() + static_cast<std::ptrdiff_t>(e))
+        continue;
+      const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.01 / r.test.dt_s)));
+      double sum = 0.0;
+      std::size_t m = 0;
+      for (std::size_t i = b; i < e && i < b + w; ++i, ++m) sum += r.test.force_kip[i];
+      held.push_back(sum / static_cast<double>(m));
+    }
   }
   return held;
 }
@@ -477,7 +488,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
   // sub-family (candidate_subfamilies: each mechanism alone and the whole family; as many rest-level
   // parameters free as the folds' fitting data hold distinct rests). The candidate x sub-family x fold fits
   // are independent and run in parallel.
-  int rest_levels = 3;
+  int rest_levels = 4;
   std::vector<double> fold_rests;  // held forces of fold 1's fitting rests, for the note
   for (std::size_t f = 0; f < n_folds; ++f) {
     const std::vector<double> held = rest_held_forces(recs, plan.folds[f].fit_mask);

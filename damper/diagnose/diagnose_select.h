@@ -88,9 +88,9 @@ double signature_density(const CandidateScore& c);
 /// least options.signature_density.
 bool signature_holds(const CandidateScore& c, const DiagnoseOptions& o);
 
-/// The rests in the fitting samples of `mask`: for each record whose final rest
-/// (Segmentation::rest_begin) the mask covers, the measured force held when the drum stopped (mean
-/// over the first 10 ms of the rest), kip.
+/// The rests in the fitting samples of `mask`: for each rest (Segmentation::rests: the stops
+/// between strokes and the final rest) that the mask covers, the measured force held when the drum
+/// stopped (mean over the first 10 ms of the rest), kip.
 std::vector<double> rest_held_forces(const std::vector<DiagnoseRecord>& recs,
                                      const std::vector<std::vector<std::uint8_t>>& mask);
 

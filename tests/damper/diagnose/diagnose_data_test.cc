@@ -110,6 +110,51 @@ TEST(DiagnoseData, BandReloadingStartsWhereTheForceChangesSign) {
   }
 }
 
+// Rests between strokes: the drum goes 0 -> 1 in (1 s), stops 0.6 s, comes back to 0 (1 s), pauses
+// 0.05 s (with the slow ends of its strokes, still shorter than min_rest_s 0.2 s: not a rest), goes to -0.5 in (0.5 s) and stops for 1.5 s.
+// The stops of at least 0.2 s within rest_band_in (0.01 in, here with a 0.004 in encoder flicker)
+// are rests and the after_stop regime, although the drum moves again after the first; the short
+// pause is not; the final rest is the last rest. Fails if only the final rest counts.
+TEST(DiagnoseData, StopsBetweenStrokesAreRestsLikeTheFinalOne) {
+  BrfdTest t;
+  t.dt_s = 1.0 / 1000.0;
+  struct Leg {
+    double duration_s, from_in, to_in;
+  };
+  const std::vector<Leg> legs{{1.0, 0.0, 1.0}, {0.6, 1.0, 1.0}, {1.0, 1.0, 0.0}, {0.05, 0.0, 0.0}, {0.5, 0.0, -0.5}, {1.5, -0.5, -0.5}};
+  double time = 0.0;
+  for (const Leg& leg : legs) {
+    const int steps = static_cast<int>(std::lround(leg.duration_s / t.dt_s));
+    for (int k = 0; k < steps; ++k) {
+      const double u = static_cast<double>(k) / steps;  // smooth stroke: half a cosine
+      const double d = leg.from_in + (leg.to_in - leg.from_in) * 0.5 * (1.0 - std::cos(M_PI * u));
+      const double v = (leg.to_in - leg.from_in) * 0.5 * M_PI / leg.duration_s * std::sin(M_PI * u);
+      t.time_s.push_back(time);
+      t.drum_disp_in.push_back(d + 0.004 * ((t.time_s.size() % 3) - 1.0));
+      t.drum_vel_in_per_s.push_back(v);
+      t.force_kip.push_back(v >= 0.0 ? 1.0 : -1.0);
+      time += t.dt_s;
+    }
+  }
+  const Segmentation s = segment_record(t);
+  ASSERT_EQ(s.rests.size(), 2u);
+  // The stop at 1 in: 1.0-1.6 s, extended by the slow ends of the strokes around it.
+  EXPECT_NEAR(s.rests[0].begin * t.dt_s, 1.0, 0.12);
+  EXPECT_NEAR(s.rests[0].end * t.dt_s, 1.6, 0.12);
+  EXPECT_EQ(s.rests[1].begin, s.rest_begin);
+  EXPECT_EQ(s.rests[1].end, t.size());
+  auto at = [&](double time_s) { return s.regime[static_cast<std::size_t>(std::lround(time_s / t.dt_s))]; };
+  EXPECT_EQ(at(1.3), Regime::after_stop);  // resting between strokes
+  EXPECT_EQ(at(1.8), Regime::reversal);    // moving again: right after the reversal
+  EXPECT_NE(at(2.625), Regime::after_stop);  // the 0.05 s pause
+  EXPECT_EQ(at(4.0), Regime::after_stop);  // the final rest
+  // A 0.5 kip step in the residual during the stop between strokes sits in after_stop.
+  std::vector<double> r(t.size(), 0.0);
+  for (std::size_t i = s.rests[0].begin + 100; i + 100 < s.rests[0].end; ++i) r[i] = 0.5;
+  const RegimeEnergy e = localize(r, s, t.dt_s, SegmentationOptions{});
+  EXPECT_GT(e.energy[static_cast<int>(Regime::after_stop)] / e.total(), 0.9);  // the rest: the step's edges, chatter
+}
+
 TEST(DiagnoseData, LocalizeAttributesEnergyToRegimesAndChatter) {
   const BrfdTest t = make_record(synthetic_base());
   const Segmentation s = segment_record(t);
