@@ -279,13 +279,13 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5}));
   // Drive-line play of 2 x 0.05 in, the band unloading over it (e^(-20 s)).
   c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5}));
-  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0}));
-  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0}));
+  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
-  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 1.0}));
-  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0}));
+  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0, 0.0}));
   // A stretched settling (β = 0.4) of 40 % of the held force: fast at first, a long tail.
-  c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4}));
+  c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4, 0.0}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0, 0.0, 2.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0}));
   // A transport delay of 0.08 s; the actuators slewing at no more than 0.1 in/s.

@@ -328,13 +328,19 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
     f.relax = rest_rate_per_s_ >= 0.0 ? rest_rate_per_s_ : std::exp(-q * q) / e.residual_static->time_constant_s;
     if (f.relax > 0.0) {
-      // z_r = (1 − m) z_h + m z_o, S(z_o) N_λ = ±ρ Fc of the loaded direction + f_o.
+      // z_r = (1 − m) z_h + m z_o, S(z_o) N_λ = ±ρ Fc of the loaded direction + f_o; the held
+      // force's set change Δ_h (in its own direction) on top, in force.
       const ResidualStaticEffect& rs = *e.residual_static;
       const double fc_pos = forward ? l.fc : levels(in, true).fc;
       const double fc_neg = forward ? levels(in, false).fc : l.fc;
       const double m = rs.relaxed_share;
       f.target_pos = (1.0 - m) * held_z_in_ + m * bristle_for_force((rs.ratio * fc_pos + rs.offset_kip) / f.tension);
       f.target_neg = (1.0 - m) * held_z_in_ + m * bristle_for_force((-rs.ratio * fc_neg + rs.offset_kip) / f.tension);
+      if (rs.held_change_kip != 0.0 && held_z_in_ != 0.0) {
+        const double change = (held_z_in_ > 0.0 ? rs.held_change_kip : -rs.held_change_kip) / f.tension;
+        f.target_pos = bristle_for_force(spring_force_kip(f.target_pos) + change);
+        f.target_neg = bristle_for_force(spring_force_kip(f.target_neg) + change);
+      }
     }
   }
   return f;

@@ -42,13 +42,14 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent", "held_change_kip"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
     x.relaxed_share = r.get_double_in("relaxed_share", 1.0, 0.0, 1.0);
     x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
     x.relaxation_exponent = r.get_double_in("relaxation_exponent", 1.0, 0.05, 1.0);
+    x.held_change_kip = r.get_double_in("held_change_kip", 0.0, -50.0, 50.0);
     e.residual_static = x;
   }
   if (s.has("actuator_lag")) {
@@ -237,13 +238,14 @@ std::vector<EffectSpec> build_library() {
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
-      "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), z_r = (1 - m) z_held + m z_o, "
+      "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), S(z_r) = (1 - m) S(z_held) + m S(z_o) + sign(z_held) held_change, "
       "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) exp(-(t_rest/tau_r)^beta)",
       {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
        {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
        {"relaxed_share", 0.0, 1.0, 0.0, 1.0, false, true},
        {"offset_kip", -3.0, 3.0, 0.0, 0.0, false},
-       {"relaxation_exponent", 0.15, 1.0, 1.0, 0.5, true}},
+       {"relaxation_exponent", 0.15, 1.0, 1.0, 0.5, true},
+       {"held_change_kip", -3.0, 3.0, 0.0, 0.0, false}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
@@ -252,10 +254,12 @@ std::vector<EffectSpec> build_library() {
         r.relaxed_share = t[2];
         r.offset_kip = t[3];
         r.relaxation_exponent = t[4];
+        r.held_change_kip = t[5];
         return r;
       }),
       std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
-        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.relaxation_exponent};
+        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.relaxation_exponent,
+                                   r.held_change_kip};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
@@ -453,7 +457,7 @@ std::vector<EffectSpec> build_library() {
   sig("residual_static", {"after_stop", "sticking"}, {"backlash", "transition_shape"});
   for (EffectSpec& s : lib)
     if (s.name == "residual_static") {
-      s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}};
+      s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}, {"held_change_kip", 0.0}};
       s.rest_shape = {"relaxation_exponent"};
     }
   // Physical mechanisms of each family (EffectSpec::mechanisms).

@@ -60,7 +60,7 @@
 ///    standard linear solid), towards f_o with it (the band recovers towards its pre-tension
 ///    imbalance)):
 ///      dz/dt += −w (z − z_r) / τ_r,  w = exp(−(s̃/v_rest)²),
-///      z_r = (1 − m) z_h + m z_o,  S(z_o) = sign(z) ρ Fc + f_o,
+///      S(z_r) = (1 − m) S(z_h) + m S(z_o) + sign(z_h) Δ_h,  S(z_o) = sign(z) ρ Fc + f_o,
 ///      z_h = z while the drum moves (w < 1/2), held once it rests (w ≥ 1/2);
 ///      ds̃/dt = (|v| − s̃) / τ_s,  τ_s = 0.05 s, v_rest = 0.05 in/s (fixed); s̃(0) = 1000 in/s.
 ///    (m and f_o added 2026-11-26: outside authors' relaxations of the held force and recoveries
@@ -72,6 +72,10 @@
 ///    drum came to rest (w reached 1/2), so that z − z_r = (z_h − z_r) exp(−(t_r/τ_r)^β) at rest
 ///    (Williams & Watts 1970; a spread of relaxation times, Findley et al. 1976); while the drum
 ///    moves (w < 1/2) the rate stays w/τ_r. β = 1: the exponential above.
+///    Set change of the held force (held_change_kip = Δ_h, added 2026-11-27 after outside
+///    authors' residual band tension building up at rest in the last slip direction and a
+///    logarithmic creep by a set amount, blind set 20 t01 and t26, both beyond a share m of the
+///    held force or a level of Fc): the rest target moves by Δ_h in the direction of the held force.
 ///  - actuator_lag (time_constant_s = τ_a, natural_period_s = T, damping_ratio = ζ): the
 ///    kinetic friction follows the actuator motion through a first-order lag and a second-order
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
@@ -290,6 +294,10 @@ struct ResidualStaticEffect {
   /// exp(−(t_r/τ_r)^β) of the rest time t_r; 1 (default) the exponential, < 1 a spread of
   /// relaxation times (fast at first, a long tail: close to a logarithmic creep for small β).
   double relaxation_exponent = 1.0;
+  /// Δ_h: a set change of the held force at rest in the direction the band is loaded, kip
+  /// (> 0 the band tightens, residual band tension building up; < 0 it slackens by a set amount
+  /// whatever force it held, as a creeping contact does).
+  double held_change_kip = 0.0;
   static constexpr double kRestSpeedInPerS = 0.05;  ///< v_rest
   static constexpr double kSpeedFilterS = 0.05;     ///< τ_s of the low-passed speed s̃
 };

@@ -356,28 +356,30 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
   EXPECT_EQ(distinct_rest_levels({0.01, 0.04}), 1);  // within 0.05 kip
   EXPECT_EQ(distinct_rest_levels({2.0, 1.0, -1.5}), 3);
   const EffectSpec& rs = effect_spec("residual_static");
-  ASSERT_EQ(rs.parameters.size(), 5u);
+  ASSERT_EQ(rs.parameters.size(), 6u);
   EXPECT_EQ(candidate_subfamilies(rs, 0).size(), 1u);  // no rest: the whole family, as before
-  EXPECT_EQ(candidate_subfamilies(rs, 3).front().parameters.size(), 5u);
+  EXPECT_EQ(candidate_subfamilies(rs, 4).size(), 1u);  // as many rests as rest-level parameters
+  EXPECT_EQ(candidate_subfamilies(rs, 4).front().parameters.size(), 6u);
   // A family without a rest level: the rest count changes nothing.
   EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).size(), candidate_subfamilies(effect_spec("backlash"), 0).size());
   EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).back().parameters.size(),
             effect_spec("backlash").parameters.size());
-  for (int levels : {1, 2}) {
+  for (int levels : {1, 2, 3}) {
     std::vector<EffectSpec> subs = candidate_subfamilies(rs, levels);
-    // 3 choose 1 or 3 choose 2 with the relaxation exponent held at 1, the same with it free, then
-    // the whole family.
-    ASSERT_EQ(subs.size(), 7u) << levels;
+    // 4 choose `levels` (ratio, relaxed_share, offset_kip, held_change_kip) with the relaxation
+    // exponent held at 1, the same with it free, then the whole family.
+    const std::size_t choices = levels == 2 ? 6u : 4u;
+    ASSERT_EQ(subs.size(), 2 * choices + 1) << levels;
     EXPECT_EQ(subs.front().subfamily.rfind("ratio", 0), 0u) << subs.front().subfamily;  // ratio first
     EXPECT_TRUE(subs.back().subfamily.empty());
-    EXPECT_EQ(subs.back().parameters.size(), 5u);
+    EXPECT_EQ(subs.back().parameters.size(), 6u);
     subs.pop_back();
     for (std::size_t s = 0; s < subs.size(); ++s) {
       const EffectSpec& sub = subs[s];
-      const bool shape_free = s >= 3;
+      const bool shape_free = s >= choices;
       ASSERT_EQ(sub.parameters.size(), static_cast<std::size_t>(1 + levels + (shape_free ? 1 : 0))) << sub.subfamily;
       // set() puts the free values in their places and the fixed ones (ratio 0, relaxed_share 1,
-      // offset_kip 0) in the others; get() reads the free ones back.
+      // offset_kip 0, held_change_kip 0) in the others; get() reads the free ones back.
       std::vector<double> theta;
       for (std::size_t j = 0; j < sub.parameters.size(); ++j) theta.push_back(0.3 + 0.1 * static_cast<double>(j));
       ModelEffects e;
@@ -385,19 +387,20 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
       ASSERT_TRUE(e.residual_static.has_value());
       EXPECT_EQ(sub.get(e), theta);
       const std::vector<double> all = rs.get(e);
-      const double fixed[] = {0.0, -1.0, 1.0, 0.0, 1.0};  // -1: time_constant_s, always free
-      EXPECT_EQ(sub.parameters.back().name == "relaxation_exponent", shape_free) << sub.subfamily;
-      std::size_t k = 0;
-      for (std::size_t j = 0; j < 5; ++j) {
-        const bool free = k < sub.parameters.size() && sub.parameters[k].name == rs.parameters[j].name;
-        if (free) {
-          EXPECT_DOUBLE_EQ(all[j], theta[k]) << sub.subfamily << " " << rs.parameters[j].name;
-          ++k;
+      const double fixed[] = {0.0, -1.0, 1.0, 0.0, 1.0, 0.0};  // -1: time_constant_s, always free
+      EXPECT_EQ(std::find_if(sub.parameters.begin(), sub.parameters.end(),
+                             [](const EffectParameter& q) { return q.name == "relaxation_exponent"; }) != sub.parameters.end(),
+                shape_free)
+          << sub.subfamily;
+      for (std::size_t j = 0; j < 6; ++j) {
+        const auto at = std::find_if(sub.parameters.begin(), sub.parameters.end(),
+                                     [&](const EffectParameter& q) { return q.name == rs.parameters[j].name; });
+        if (at != sub.parameters.end()) {
+          EXPECT_DOUBLE_EQ(all[j], theta[static_cast<std::size_t>(at - sub.parameters.begin())]) << sub.subfamily << " " << rs.parameters[j].name;
         } else {
           EXPECT_DOUBLE_EQ(all[j], fixed[j]) << sub.subfamily << " " << rs.parameters[j].name;
         }
       }
-      EXPECT_EQ(k, sub.parameters.size()) << sub.subfamily;
     }
   }
 }
@@ -494,7 +497,7 @@ TEST(DiagnoseSelection, JointLugreOfTheUpdatedModelUsesOnlyWindowsThatIdentify) 
 // rests, the effect is named and removes most of the held-out residual.
 TEST(DiagnoseSelection, OneRestPerRecordIsFittedWithOneRestLevelParameter) {
   BrfdParams truth = bench_base_model();
-  effect_spec("residual_static").set(truth.effects, {0.8, 0.1, 1.0, 0.0, 1.0});
+  effect_spec("residual_static").set(truth.effects, {0.8, 0.1, 1.0, 0.0, 1.0, 0.0});
   std::vector<DiagnoseRecord> recs;
   for (BrfdTest& t : records_of(truth, 0.02, 21)) {
     const Segmentation seg = segment_record(t);
@@ -514,11 +517,11 @@ TEST(DiagnoseSelection, OneRestPerRecordIsFittedWithOneRestLevelParameter) {
             << c.heldout_rmse_kip << " kip (" << c.verdict << ")\n";
   for (const std::string& n : out.notes) std::cout << n << "\n";
   EXPECT_FALSE(c.subfamily.empty());
-  // Two of the three rest-level parameters fixed, and the relaxation exponent unless freeing it
+  // Three of the four rest-level parameters fixed, and the relaxation exponent unless freeing it
   // predicts the unseen rest better.
   EXPECT_EQ(std::count_if(c.fixed_parameters.begin(), c.fixed_parameters.end(),
                           [](const std::string& n) { return n != "relaxation_exponent"; }),
-            2);
+            3);
   EXPECT_GT(c.heldout_gain, 0.5);
   EXPECT_EQ(out.winner, 0) << out.stop_reason;
   ASSERT_EQ(out.winner_spec.size(), 1u);

@@ -296,6 +296,46 @@ TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
   }
 }
 
+// residual_static's set change of the held force (held_change_kip Δ_h): with m = 0 the rest target is
+// the held force moved by Δ_h in its own direction, F(t) = F_h + sign(F_h) Δ_h (1 − exp(−((t − t*)/τ_r)^β))
+// after the freeze at t*: the band tightens (Δ_h > 0, residual band tension building up) or slackens
+// by a set amount (Δ_h < 0), whatever it held, forward and backward alike. Fails with Δ_h ignored
+// or applied against the held force's direction.
+TEST(Effects, HeldForceChangesByASetAmountInTheDirectionItIsLoaded) {
+  const double dt = 1e-3, v = 1.0, tau = 0.3, beta = 0.6;
+  const double t_freeze = ResidualStaticEffect::kSpeedFilterS *
+                          std::log(v / (ResidualStaticEffect::kRestSpeedInPerS * std::sqrt(std::log(2.0))));
+  const int i_freeze = static_cast<int>(std::ceil(t_freeze / dt));
+  for (const double change : {0.4, -0.5}) {
+    BrfdParams p = coulomb_band();
+    p.effects.residual_static = ResidualStaticEffect{};
+    p.effects.residual_static->ratio = 0.0;
+    p.effects.residual_static->relaxed_share = 0.0;
+    p.effects.residual_static->time_constant_s = tau;
+    p.effects.residual_static->relaxation_exponent = beta;
+    p.effects.residual_static->held_change_kip = change;
+    BrfdModel model(p);
+    DamperInput in;
+    for (const double dir : {1.0, -1.0}) {
+      const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      in.drum_vel_in_per_s = dir * v;
+      for (int i = 0; i < 3000; ++i) model.step(in, dt);
+      in.drum_vel_in_per_s = 0.0;
+      double held = 0.0, worst = 0.0, f = 0.0;
+      for (int i = 1; i <= 6000; ++i) {
+        f = model.step(in, dt);
+        if (i == i_freeze - 1) held = f;
+        if (i < i_freeze) continue;
+        const double t = (i - i_freeze + 1) * dt;
+        worst = std::max(worst, std::abs(f - (held + dir * change * (1.0 - std::exp(-std::pow(t / tau, beta))))));
+      }
+      EXPECT_NEAR(held, dir * fc, 0.1 * fc) << "dir " << dir << " change " << change;
+      EXPECT_LT(worst, 1e-3 * fc) << "dir " << dir << " change " << change;
+      EXPECT_NEAR(f, held + dir * change, 0.02 * std::abs(change)) << "dir " << dir << " change " << change;
+    }
+  }
+}
+
 // Dahl's exponent n (transition_shape's dahl_exponent), with σ1 = σ2 = 0 and Fs = Fc (g = Fc): from
 // F = 0 at constant v > 0, dF/dx = σ0 (1 − F/Fc)^n, so the remaining share u = 1 − F/Fc is
 // u = (1 + (n − 1) σ0 x/Fc)^(−1/(n−1)): n = 2, u = 1/(1 + σ0 x/Fc); n = 0.5, u = (1 − σ0 x/(2 Fc))²
