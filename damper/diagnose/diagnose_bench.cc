@@ -312,17 +312,20 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // Frictional memory of the whole friction-velocity curve: the Stribeck term and the viscous force
   // see the velocity 0.1 s late.
   c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0}));
-  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0}));  // a saturating contact, Fc = b N^0.6
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0}));
+  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0, 0.0}));  // a saturating contact, Fc = b N^0.6
   // Thermal fade: the friction work stored as heat, conducted away with a 5 s time constant.
-  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2, 1.0, 1.0}));
+  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2, 1.0, 1.0, 0.0}));
   // The band's own pre-tension loosens with the wear (40 % over about 50 kip·in of friction work);
   // the actuators keep their increment.
-  c.push_back(library_case("pretension", "loosening", {0.0, 0.0, 0.008, 1.0, 50.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("pretension", "loosening", {0.0, 0.0, 0.008, 1.0, 50.0, 0.0, 0.0, 1.0, 0.0}));
   // Eq. (4) bent with its slope at the pre-tension kept (Box-Cox, q = 2, k = 1/2: the capstan's
   // exponential to second order).
-  c.push_back(library_case("pretension", "curved", {0.0, 0.0, 0.0, 2.0, 3000.0, 0.0, 1.0, 0.5}));
+  c.push_back(library_case("pretension", "curved", {0.0, 0.0, 0.0, 2.0, 3000.0, 0.0, 1.0, 0.5, 0.0}));
+  // The two actuators' clamping not additive: ΔFc += c u1 u2 (with the drives' two-actuator pulses,
+  // 0.015-0.02 in, about 1.5-2.4 kip at their peak).
+  c.push_back(library_case("pretension", "coupling", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 6000.0}));
   c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0}));  // band-force feedback only

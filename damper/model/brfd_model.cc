@@ -190,7 +190,11 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     // pretension's clamping law: ΔFc = k b (N^q − 1), N = 1 + ΔFc/b the tension ratio of Eq. (4).
     if (e.pretension && e.pretension->clamp_exponent != 1.0 && b > 0.0)
       dfc = b * (std::pow(std::max(1.0 + dfc / b, 0.01), e.pretension->clamp_exponent) - 1.0);
-    if (e.pretension) dfc *= e.pretension->clamp_gain;
+    if (e.pretension) {
+      dfc *= e.pretension->clamp_gain;
+      // Non-additive clamping of the two actuators: c u1 u2.
+      dfc += e.pretension->actuator_coupling_kip_per_in2 * (x1 - s.actuator1_initial_in) * (x2 - s.actuator2_initial_in);
+    }
   }
   double fc = b + dfc;
   double fs = forward ? p.fs_fwd_kip : p.fs_bwd_kip;

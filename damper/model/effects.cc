@@ -104,7 +104,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
-                  "wear_recovery_per_s", "wear_actuator_share", "clamp_gain"});
+                  "wear_recovery_per_s", "wear_actuator_share", "clamp_gain", "actuator_coupling_kip_per_in2"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -114,6 +114,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.wear_recovery_per_s = p.get_double_in("wear_recovery_per_s", 0.0, 0.0, 1e3);
     x.wear_actuator_share = p.get_double_in("wear_actuator_share", 1.0, 0.0, 1.0);
     x.clamp_gain = p.get_double_in("clamp_gain", 1.0, 0.05, 20.0);
+    x.actuator_coupling_kip_per_in2 = p.get_double_in("actuator_coupling_kip_per_in2", 0.0, -1e6, 1e6);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -362,7 +363,7 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain)",
+      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k)",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
@@ -370,7 +371,8 @@ std::vector<EffectSpec> build_library() {
        {"wear_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
        {"wear_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
        {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true},
-       {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true}},
+       {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true},
+       {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -382,11 +384,13 @@ std::vector<EffectSpec> build_library() {
         p.wear_recovery_per_s = t[5];
         p.wear_actuator_share = t[6];
         p.clamp_gain = t[7];
+        p.actuator_coupling_kip_per_in2 = t[8];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
-                                   p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain};
+                                   p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain,
+                                   p.actuator_coupling_kip_per_in2};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -487,7 +491,8 @@ std::vector<EffectSpec> build_library() {
                       {"clamp_exponent"},                // a power of the tension ratio
                       {"clamp_exponent", "clamp_gain"},  // Eq. (4)'s curvature and gain apart
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"},
-                      {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"}});
+                      {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"},
+                      {"actuator_coupling_kip_per_in2"}});  // the two actuators' clamping not additive
   // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the
   // run started (drum_start_share = 1, the convention of Eq. (4)'s x') or at the drum's zero (0).
   // Each mechanism that counts the rotation is tried from each origin; only the whole family frees

@@ -386,6 +386,9 @@ struct PretensionEffect {
   /// k: gain of the clamping law, ΔFc = k b (N^q − 1) (1: Eq. 4's increment, or the power law;
   /// k = 1/q keeps Eq. 4's slope at the pre-tension and bends the law only).
   double clamp_gain = 1.0;
+  /// c: the two actuators' clamping is not additive, ΔFc += c u1 u2 (u_k = x_k − x'_k, after any
+  /// actuator_lag), kip/in²; 0: Eq. (4)'s sum of the two actuators' terms.
+  double actuator_coupling_kip_per_in2 = 0.0;
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

@@ -1217,6 +1217,38 @@ TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
   }
 }
 
+// Pretension's actuator coupling in steady sliding at a held setting (v >> v_s, σ1 = σ2 = 0):
+// F = Fc(Eq. 4) + c u1 u2, u_k = x_k − x'_k — forward and backward alike, nothing with one actuator
+// at its reference. Fails with c ignored or with one actuator's travel counted twice.
+TEST(Effects, ActuatorCouplingAddsTheProductOfTheTwoTravels) {
+  BrfdParams p = synthetic_base();
+  ASSERT_EQ(p.kind, DamperKind::semiactive);
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double c = 4000.0;  // kip/in²
+  p.effects.pretension = PretensionEffect{};
+  p.effects.pretension->actuator_coupling_kip_per_in2 = c;
+  BrfdParams plain = p;
+  plain.effects = {};
+  const BrfdModel without(plain);
+  for (const double speed : {4.0, -4.0}) {
+    for (const auto& [u1, u2] : std::vector<std::pair<double, double>>{{-0.01, -0.02}, {0.015, -0.01}, {-0.02, 0.0}}) {
+      BrfdModel m(p);
+      DamperInput in;
+      in.drum_vel_in_per_s = speed;
+      in.actuator1_in = p.semiactive.actuator1_initial_in + u1;
+      in.actuator2_in = p.semiactive.actuator2_initial_in + u2;
+      const double fc = without.kinetic_friction_kip(in);
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += speed * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      EXPECT_NEAR(std::abs(f), fc + c * u1 * u2, 1e-6 * fc) << "v " << speed << " u " << u1 << ", " << u2;
+    }
+  }
+}
+
 // Pretension's wear in steady sliding: dW/dt = F v and F = G (1 - w W) give the closed form
 // F(t) = G exp(-w G v t) (G the friction without wear; no viscous term, v >> v_s).
 // pretension's wear_actuator_share u, in steady sliding at a held actuator setting (σ1 = σ2 = 0,
