@@ -302,16 +302,18 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // with a 5 s time constant.
   c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0}));
   c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2}));
-  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0}));
-  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
-  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0}));
+  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0, 0.0, 1.0}));
   // A shear-thinning film in place of part of the viscous force: -0.3 v + 0.4 sgn(v) |v|^0.5.
-  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // Frictional memory of the whole friction-velocity curve: the Stribeck term and the viscous force
   // see the velocity 0.1 s late.
-  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0}));
+  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0, 0.0, 1.0}));
+  // Flash heating: the levels fall by 30 % of (1 - 0.8/|v|) above 0.8 in/s (Rice 2006).
+  c.push_back(library_case("velocity", "flash", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.8}));
   c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0}));
   c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0, 0.0}));  // a saturating contact, Fc = b N^0.6

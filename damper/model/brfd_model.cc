@@ -120,12 +120,17 @@ void BrfdModel::set_bristle_in(double z_in) {
 
 double BrfdModel::rate_factor(double speed) const {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
-  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0)) return 1.0;
+  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0 && ve->flash_weakening == 0.0)) return 1.0;
+  // Flash heating above v_w: × (1 − a_w (1 − v_w/|v|)).
+  const double flash = ve->flash_weakening != 0.0 && speed > ve->weakening_speed_in_per_s
+                           ? 1.0 - ve->flash_weakening * (1.0 - ve->weakening_speed_in_per_s / speed)
+                           : 1.0;
+  if (ve->rate_slope == 0.0 && ve->direct_slope == 0.0) return std::max(0.2, flash);
   const double now = speed + VelocityEffect::kSpeedFloorInPerS;
   const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
   const double direct = ve->direct_slope != 0.0 ? ve->direct_slope * std::log(now / ve->reference_speed_in_per_s) : 0.0;
   const double state = ve->rate_slope != 0.0 ? ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s) : 0.0;
-  return std::max(0.2, 1.0 + direct + state);
+  return std::max(0.2, (1.0 + direct + state) * flash);
 }
 
 double BrfdModel::engaged_share(double z) const {

@@ -86,7 +86,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection v = s.section("velocity");
     v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
-                  "stribeck_lag_s", "viscous_exponent", "lag_viscous_share"});
+                  "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -99,6 +99,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.stribeck_lag_s = v.get_double_in("stribeck_lag_s", 0.0, 0.0, 100.0);
     x.viscous_exponent = v.get_double_in("viscous_exponent", 2.0, 0.05, 10.0);
     x.lag_viscous_share = v.get_double_in("lag_viscous_share", 0.0, 0.0, 1.0);
+    x.flash_weakening = v.get_double_in("flash_weakening", 0.0, -1.0, 0.95);
+    x.weakening_speed_in_per_s = v.get_double_in("weakening_speed_in_per_s", 1.0, 1e-3, 1e3);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -328,7 +330,7 @@ std::vector<EffectSpec> build_library() {
       "g(v) = phi Fc + phi (Fs - Fc) exp(-|v_L/vs|^n), v_L = |v| lagged by tau_L; F += c_a v + c_q sgn(v) |v|^n_f (n_f = viscous_exponent); "
       "the viscous force sees v + lambda_v (v lagged by tau_L - v); "
       "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
-      "seen through the aging law over a slip distance D (config-only: + c_v |v| in g)",
+      "seen through the aging law over a slip distance D; levels x (1 - a_w (1 - v_w/|v|)) above v_w (flash heating) (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"rate_slope", -0.8, 0.8, 0.0, -0.05, false},
@@ -338,7 +340,9 @@ std::vector<EffectSpec> build_library() {
        {"quadratic_viscous_kip_s2_per_in2", -0.4, 0.4, 0.0, 0.05, false},
        {"stribeck_lag_s", 0.0, 1.0, 0.0, 0.05, false},
        {"viscous_exponent", 0.2, 3.0, 2.0, 0.7, true},
-       {"lag_viscous_share", 0.0, 1.0, 0.0, 1.0, false, true}},
+       {"lag_viscous_share", 0.0, 1.0, 0.0, 1.0, false, true},
+       {"flash_weakening", -0.5, 0.8, 0.0, 0.2, false},
+       {"weakening_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -352,13 +356,15 @@ std::vector<EffectSpec> build_library() {
         v.stribeck_lag_s = t[7];
         v.viscous_exponent = t[8];
         v.lag_viscous_share = t[9];
+        v.flash_weakening = t[10];
+        v.weakening_speed_in_per_s = t[11];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
         return std::vector<double>{v.stribeck_exponent, v.added_viscous_kip_s_per_in, v.rate_slope,
                                    v.reference_speed_in_per_s, v.memory_in, v.direct_slope,
                                    v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s, v.viscous_exponent,
-                                   v.lag_viscous_share};
+                                   v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
@@ -484,7 +490,8 @@ std::vector<EffectSpec> build_library() {
                     {"stribeck_exponent", "stribeck_lag_s", "lag_viscous_share"},               // and the whole curve's lag
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2", "viscous_exponent"},  // power-law film
-                    {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"}});  // rate and state
+                    {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"},    // rate and state
+                    {"flash_weakening", "weakening_speed_in_per_s"}});                          // flash heating
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
   mech("pretension", {{"fs_share", "instant_share"},

@@ -369,6 +369,11 @@ struct VelocityEffect {
   /// λ_v: share of the viscous force (σ2 and the film) that sees the drum velocity through the lag
   /// τ_L as well (frictional memory of the whole friction-velocity curve); 0 = the Stribeck term only
   double lag_viscous_share = 0.0;
+  /// a_w: flash-heating weakening of the friction levels above the weakening speed v_w,
+  /// × (1 − a_w (1 − v_w/|v|)) for |v| > v_w (Rice 2006: the asperity contacts heat and weaken once
+  /// they slide faster than they conduct the heat away); 0 = none, < 0 a strengthening.
+  double flash_weakening = 0.0;
+  double weakening_speed_in_per_s = 1.0;  ///< v_w, in/s (> 0)
   static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).

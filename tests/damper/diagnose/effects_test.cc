@@ -650,6 +650,33 @@ TEST(Effects, VelocityEffectGivesParallelViscousAndLogRateLevels) {
   EXPECT_LT(worst, 2e-3 * p.lugre.fc_fwd_kip);
 }
 
+// Flash-heating weakening (velocity's flash_weakening a_w, weakening_speed v_w) in steady sliding
+// (stiff band): F = φ_w g(v) + σ2 v, φ_w = 1 − a_w (1 − v_w/|v|) above v_w and 1 below it, both
+// directions. Fails with the weakening ignored, or applied below v_w.
+TEST(Effects, FlashHeatingWeakensTheFrictionAboveItsSpeed) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const double aw = 0.3, vw = 1.2;
+  p.effects.velocity = VelocityEffect{};
+  p.effects.velocity->flash_weakening = aw;
+  p.effects.velocity->weakening_speed_in_per_s = vw;
+  for (double v : {0.5, 1.0, 2.0, 4.0, -3.0}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+    const double speed = std::abs(v);
+    const double phi = speed > vw ? 1.0 - aw * (1.0 - vw / speed) : 1.0;
+    const double fc = v > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = v > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+    const double r = speed / p.lugre.vs_in_per_s;
+    const double g = phi * (fc + (fs - fc) * std::exp(-r * r));
+    EXPECT_NEAR(std::abs(f - p.lugre.sigma2_kip_s_per_in * v), g, 1e-6 * g) << v;
+  }
+}
+
 // A passive base with a stiff bristle (σ0 = 3000 kip/in: it follows the friction law within ~1e-3
 // in of slip) and no bristle damping, for closed forms of the friction-velocity law.
 BrfdParams stiff_passive_base() {
