@@ -320,12 +320,19 @@ Segmentation segment_record(const BrfdTest& t, const SegmentationOptions& o) {
   // Rests between strokes: the drum stays within rest_band_in of where it stopped for at least
   // min_rest_s (blind sets 20 and 21: relaxations at the stops between strokes were counted as
   // "right after a reversal", so residual_static's gain there was not its own).
+  // A stop holds only samples where the drum is still (|v| <= rest_speed_in_per_s): the creep into
+  // the stop and the first hundredth of an inch of the next stroke, inside rest_band_in, are motion
+  // (blind set 22 t21: a grip lost at each reversal and taken up with travel changed the force in the
+  // first 0.01 in of the stroke after a stop, and counted as the force changing at rest).
   const std::size_t min_rest = static_cast<std::size_t>(std::ceil(o.min_rest_s / t.dt_s));
   for (std::size_t i = 0; i < rest;) {
     std::size_t j = i + 1;
     while (j < rest && std::abs(d[j] - d[i]) <= o.rest_band_in) ++j;
     if (j - i >= min_rest) {
-      s.rests.push_back({i, j});
+      std::size_t b = i, e = j;
+      while (b < e && std::abs(v[b]) > o.rest_speed_in_per_s) ++b;
+      while (e > b && std::abs(v[e - 1]) > o.rest_speed_in_per_s) --e;
+      if (e - b >= min_rest) s.rests.push_back({b, e});
       i = j;
     } else {
       ++i;

@@ -52,6 +52,9 @@ struct SegmentationOptions {
   /// "At rest": the drum stays within this of the position where it stopped (for the final rest:
   /// of its final position), in.
   double rest_band_in = 0.01;
+  /// A stop between strokes holds only samples with |v| at most this, in/s (the creep into the stop
+  /// and the start of the next stroke are motion).
+  double rest_speed_in_per_s = 0.05;
   /// Minimum duration of a rest (between strokes or final) to count as one, s.
   double min_rest_s = 0.2;
   /// Passive records (actuators never move): fraction of the record used as the passive

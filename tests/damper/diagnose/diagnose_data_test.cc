@@ -114,7 +114,9 @@ TEST(DiagnoseData, BandReloadingStartsWhereTheForceChangesSign) {
 // 0.05 s (with the slow ends of its strokes, still shorter than min_rest_s 0.2 s: not a rest), goes to -0.5 in (0.5 s) and stops for 1.5 s.
 // The stops of at least 0.2 s within rest_band_in (0.01 in, here with a 0.004 in encoder flicker)
 // are rests and the after_stop regime, although the drum moves again after the first; the short
-// pause is not; the final rest is the last rest. Fails if only the final rest counts.
+// pause is not; the final rest is the last rest; the start of the next stroke, still inside
+// rest_band_in, is not rest. Fails if only the final rest counts, or if a stop is not trimmed to
+// the samples where the drum is still.
 TEST(DiagnoseData, StopsBetweenStrokesAreRestsLikeTheFinalOne) {
   BrfdTest t;
   t.dt_s = 1.0 / 1000.0;
@@ -146,6 +148,9 @@ TEST(DiagnoseData, StopsBetweenStrokesAreRestsLikeTheFinalOne) {
   auto at = [&](double time_s) { return s.regime[static_cast<std::size_t>(std::lround(time_s / t.dt_s))]; };
   EXPECT_EQ(at(1.3), Regime::after_stop);  // resting between strokes
   EXPECT_EQ(at(1.8), Regime::reversal);    // moving again: right after the reversal
+  // 0.03 s into the next stroke the drum is still within 0.01 in of the stop but moves at 0.15 in/s:
+  // motion, not rest.
+  EXPECT_EQ(at(1.63), Regime::reversal);
   EXPECT_NE(at(2.625), Regime::after_stop);  // the 0.05 s pause
   EXPECT_EQ(at(4.0), Regime::after_stop);  // the final rest
   // A 0.5 kip step in the residual during the stop between strokes sits in after_stop.
