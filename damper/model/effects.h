@@ -149,6 +149,10 @@
 ///    Stribeck *and* the viscous term, blind set 19) the viscous force sees v_σ = v + λ_v (v_L − v),
 ///    dv_L/dt = (v − v_L)/τ_L (the signed velocity through the same lag; Hess & Soom 1990: the whole
 ///    friction-velocity curve follows the velocity late).
+///    Flash heating (flash_weakening = a_w, weakening_speed_in_per_s = v_w, added 2026-11-27 after two
+///    outside authors' high-speed weakening, blind sets 22 and 23): the levels × (1 − a_w (1 − v_w/|v|))
+///    for |v| > v_w (Rice 2006: asperity contacts heat and weaken once they slide faster than they
+///    conduct the heat away); 1 below v_w. Steady sliding tested.
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -188,6 +192,10 @@
 ///    logarithmic saturation, q = 2 the capstan's e^(pL) to second order), q = 1 scales the
 ///    increment (the scaling factors C of Table 2 off). Outside authors' capstan map
 ///    b + (e^(pL) − 1)/p (blind set 16 t18) and saturating gain (set 15 t06) were outside q alone.
+///    Actuator coupling (actuator_coupling_kip_per_in2 = c, added 2026-11-27 after three outside
+///    authors' non-additive clamping, blind sets 21-23): the two actuators act on bands sharing the
+///    drum, ΔFc += c u1 u2 with u_k = x_k − x'_k (after any actuator_lag); the seed paper neglects
+///    this interaction. Steady sliding F = Fc(Eq. 4) + c u1 u2, tested.
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
