@@ -265,7 +265,46 @@ std::string regime_list(const std::vector<std::string>& r) {
   return s;
 }
 
+// The candidate with the largest held-out gain over the parts drawn `w` times among those that
+// pass: every gate (full: out.scores[c].passes, on all parts once), or inside a resample every gate
+// but the consistency and per-record ones (choice_confidence); -1: none.
+int winner_of(const std::vector<CandidateScore>& scores, const std::vector<int>& w, bool full,
+              const std::vector<std::size_t>& part_record, std::size_t records, double sigma2, const DiagnoseOptions& o) {
+  int best = -1;
+  double best_gain = 0.0;
+  for (std::size_t c = 0; c < scores.size(); ++c) {
+    const bool passes = full ? scores[c].passes
+                             : gates(scores[c], w, part_record, records, sigma2, o, true, /*check_consistency=*/false).passes;
+    if (!passes) continue;
+    double gain = 0.0;
+    for (std::size_t p = 0; p < w.size(); ++p) gain += w[p] * scores[c].part_gain_kip2[p];
+    if (best < 0 || gain > best_gain) {
+      best = static_cast<int>(c);
+      best_gain = gain;
+    }
+  }
+  return best;
+}
+
 }  // namespace
+
+std::vector<double> choice_confidence(const std::vector<CandidateScore>& scores, const std::vector<std::size_t>& part_record,
+                                      std::size_t records, double sigma2, const DiagnoseOptions& o, unsigned seed) {
+  const std::size_t n_parts = part_record.size();
+  std::vector<int> chosen(scores.size(), 0);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, n_parts ? n_parts - 1 : 0);
+  const int resamples = std::max(1, o.resamples);
+  for (int b = 0; b < resamples; ++b) {
+    std::vector<int> w(n_parts, 0);
+    for (std::size_t j = 0; j < n_parts; ++j) ++w[pick(rng)];
+    const int win = winner_of(scores, w, false, part_record, records, sigma2, o);
+    if (win >= 0) ++chosen[static_cast<std::size_t>(win)];
+  }
+  std::vector<double> confidence(scores.size());
+  for (std::size_t c = 0; c < scores.size(); ++c) confidence[c] = static_cast<double>(chosen[c]) / resamples;
+  return confidence;
+}
 
 ValidationPlan make_validation_plan(const std::vector<DiagnoseRecord>& recs) {
   ValidationPlan plan;
@@ -652,41 +691,12 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     out.scores.push_back(s);
   }
 
-  // Winner and bootstrap confidence over the held-out parts. The consistency gate (2) is applied
-  // once, to all held-out parts (out.scores[c].passes); inside a resample it is not re-applied:
-  // there it would measure how far a candidate's share of improved parts sits above the 80 %
-  // threshold, not how stable the choice is (a backlash improving 10 of 12 parts, 87 % of the
-  // held-out mean square, was chosen in 68 % of resamples; bench 144 -> 149 of 156, docs/diagnose.md).
-  auto winner_of = [&](const std::vector<int>& w, bool full) {
-    int best = -1;
-    double best_gain = 0.0;
-    for (std::size_t c = 0; c < out.scores.size(); ++c) {
-      const GateResult g = full ? GateResult{out.scores[c].passes, 0, 0, 0, 0, 0, ""}
-                                : gates(out.scores[c], w, part_record, recs.size(), sigma2, o, true, /*check_consistency=*/false);
-      if (!g.passes) continue;
-      double gain = 0.0;
-      for (std::size_t p = 0; p < w.size(); ++p) gain += w[p] * out.scores[c].part_gain_kip2[p];
-      if (best < 0 || gain > best_gain) {
-        best = static_cast<int>(c);
-        best_gain = gain;
-      }
-    }
-    return best;
-  };
-  const std::size_t n_parts = part_record.size();
-  const int best = winner_of(std::vector<int>(n_parts, 1), true);
-  std::vector<int> chosen(out.scores.size(), 0);
-  std::mt19937 rng(o.seed + static_cast<unsigned>(round));
-  std::uniform_int_distribution<std::size_t> pick(0, n_parts ? n_parts - 1 : 0);
-  const int resamples = std::max(1, o.resamples);
-  for (int b = 0; b < resamples; ++b) {
-    std::vector<int> w(n_parts, 0);
-    for (std::size_t j = 0; j < n_parts; ++j) ++w[pick(rng)];
-    const int win = winner_of(w, false);
-    if (win >= 0) ++chosen[static_cast<std::size_t>(win)];
-  }
-  for (std::size_t c = 0; c < out.scores.size(); ++c)
-    out.scores[c].confidence = static_cast<double>(chosen[c]) / resamples;
+  // Winner on all held-out parts (every gate, as in out.scores[c].passes) and how often it would be
+  // chosen (choice_confidence).
+  const int best = winner_of(out.scores, std::vector<int>(part_record.size(), 1), true, part_record, recs.size(), sigma2, o);
+  const std::vector<double> confidence =
+      choice_confidence(out.scores, part_record, recs.size(), sigma2, o, o.seed + static_cast<unsigned>(round));
+  for (std::size_t c = 0; c < out.scores.size(); ++c) out.scores[c].confidence = confidence[c];
   if (best < 0) {
     std::size_t top = 0;
     for (std::size_t c = 1; c < out.scores.size(); ++c)
@@ -704,7 +714,7 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
     if (static_cast<int>(c) == best || !other.passes) continue;
     if (std::find(wspec.confusable.begin(), wspec.confusable.end(), other.effect) == wspec.confusable.end()) continue;
     int differ = 0, better = 0;
-    for (std::size_t p = 0; p < n_parts; ++p) {
+    for (std::size_t p = 0; p < part_record.size(); ++p) {
       const double d = w.part_gain_kip2[p] - other.part_gain_kip2[p];
       if (std::abs(d) <= 0.02 * w.part_null_kip2[p]) continue;
       ++differ;

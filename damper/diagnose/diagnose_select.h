@@ -116,6 +116,19 @@ int distinct_rest_levels(const std::vector<double>& held_kip);
 ///    (EffectSpec::mechanism_regimes), then the whole family; {spec} when it has no mechanisms.
 std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_levels);
 
+/// Bootstrap confidence of the choice: for each candidate, the share of o.resamples resamples (with
+/// replacement, seeded by `seed`) of the held-out parts in which it is the winner — the passing
+/// candidate with the largest gain on the drawn parts. part_record[p] is part p's record, sigma2 the
+/// noise variance, kip². Inside a resample every gate of the file comment is re-applied except the
+/// consistency gate (2) and the per-record gate, which run_round applies once, on all held-out parts
+/// (scores[c].passes): in a resample they would measure how far a candidate sits above their
+/// thresholds, or whether the one or two drawn parts of a record are worse, not how stable the choice
+/// is (a backlash improving 10 of 12 parts, 87 % of the held-out mean square, was chosen in 68 % of
+/// resamples, bench 144 -> 149 of 156; a backlash removing 94 % and better on both records failed
+/// the per-record gate in 22 % of resamples, blind set 22 t10; docs/diagnose.md).
+std::vector<double> choice_confidence(const std::vector<CandidateScore>& scores, const std::vector<std::size_t>& part_record,
+                                      std::size_t records, double sigma2, const DiagnoseOptions& o, unsigned seed);
+
 /// Runs one round of the selection from `current` (effects `added` already added by this run)
 /// over the candidates `todo`.
 RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const ValidationPlan& plan,
