@@ -97,6 +97,7 @@ void BrfdModel::reset() {
   friction_work_kip_in_ = 0.0;
   band_work_fwd_kip_in_ = band_work_bwd_kip_in_ = 0.0;
   reversal_travel_in_ = kEngagedTravelIn;
+  stroke_travel_in_ = previous_stroke_in_ = 0.0;
   last_direction_ = 0;
   drum_start_in_.reset();
   play_band_in_.reset();
@@ -189,8 +190,9 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double gain1 = s.scaling[a] * s.slopes_kip_per_in[a][0] + s.scaling[c] * s.slopes_kip_per_in[c][0];
     const double gain2 = s.scaling[a] * s.slopes_kip_per_in[a][1] + s.scaling[c] * s.slopes_kip_per_in[c][1];
     const bool second = e.actuator_lag && e.actuator_lag->natural_period_s > 0.0;
-    const double x1 = e.actuator_lag ? (second ? resp1_in_ : lag1_in_) : in.actuator1_in;
-    const double x2 = e.actuator_lag ? (second ? resp2_in_ : lag2_in_) : in.actuator2_in;
+    const double late = e.actuator_lag ? e.actuator_lag->lagged_share : 0.0;  // (1 − a) x + a y
+    const double x1 = in.actuator1_in + late * ((second ? resp1_in_ : lag1_in_) - in.actuator1_in);
+    const double x2 = in.actuator2_in + late * ((second ? resp2_in_ : lag2_in_) - in.actuator2_in);
     dfc = gain1 * (x1 - s.actuator1_initial_in) + gain2 * (x2 - s.actuator2_initial_in);
     // pretension's clamping law: ΔFc = k b (N^q − 1), N = 1 + ΔFc/b the tension ratio of Eq. (4).
     if (e.pretension && e.pretension->clamp_exponent != 1.0 && b > 0.0)
@@ -235,8 +237,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     // Each band its own take-up (takeup_forward_share h_t), by the direction since the last reversal.
     const double h = e.backlash->takeup_forward_share;
     const double band_gain = last_direction_ >= 0 ? 2.0 * h : 2.0 * (1.0 - h);
-    const double lost =
-        std::min(0.95, band_gain * e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in));
+    const double stroke = e.backlash->takeup_stroke_in;  // the loss by the previous stroke, min(1, S_p/L_s)
+    const double by_stroke = stroke > 0.0 ? std::min(1.0, previous_stroke_in_ / stroke) : 1.0;
+    const double lost = std::min(
+        0.95, band_gain * by_stroke * e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in));
     factor *= 1.0 - lost;
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
@@ -509,10 +513,13 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
       x1 = rated1_in_;
       x2 = rated2_in_;
     }
-    const double tau = e.actuator_lag->time_constant_s;
-    const double keep = tau > 0.0 ? std::exp(-dt_s / tau) : 0.0;
-    lag1_in_ = x1 + (lag1_in_ - x1) * keep;
-    lag2_in_ = x2 + (lag2_in_ - x2) * keep;
+    // First-order lag, exact for the step's input held; τ_a retracting, ρ_e τ_a extending.
+    auto follow = [&](double x, double lagged) {
+      const double tau = e.actuator_lag->time_constant_s * (x > lagged ? e.actuator_lag->extend_time_ratio : 1.0);
+      return x + (lagged - x) * (tau > 0.0 ? std::exp(-dt_s / tau) : 0.0);
+    };
+    lag1_in_ = follow(x1, lag1_in_);
+    lag2_in_ = follow(x2, lag2_in_);
     const double period = e.actuator_lag->natural_period_s;
     if (period > 0.0) {
       // Second-order response to x~ held over the step: semi-implicit sub-steps (h <= T/40),
@@ -539,10 +546,15 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     // backlash's take-up: a reversal is the speed passing the threshold against the last direction.
     const int direction = v >= BacklashEffect::kReversalSpeedInPerS ? 1 : v <= -BacklashEffect::kReversalSpeedInPerS ? -1 : 0;
     if (direction != 0 && direction != last_direction_) {
-      if (last_direction_ != 0) reversal_travel_in_ = 0.0;
+      if (last_direction_ != 0) {
+        reversal_travel_in_ = 0.0;
+        previous_stroke_in_ = stroke_travel_in_;
+        stroke_travel_in_ = 0.0;
+      }
       last_direction_ = direction;
     }
     reversal_travel_in_ = std::min(reversal_travel_in_ + speed * dt_s, kEngagedTravelIn);
+    stroke_travel_in_ += speed * dt_s;
   }
   if (e.residual_static) {
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);

@@ -195,6 +195,8 @@ class BrfdModel final : public DamperModel {
   double band_work_bwd_kip_in_ = 0.0;     ///< W_bwd: the same moving backward
   static constexpr double kEngagedTravelIn = 1e3;  ///< s at the start: long past any reversal
   double reversal_travel_in_ = kEngagedTravelIn;  ///< s of backlash's take-up: drum travel since the last reversal, in
+  double stroke_travel_in_ = 0.0;  ///< drum travel since the last reversal (from the start, uncapped), in
+  double previous_stroke_in_ = 0.0;  ///< S_p of backlash's take-up: the travel between the last two reversals, in
   int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)
   std::optional<double> drum_start_in_;   ///< drum displacement at the start of the run (first step), in
   std::optional<double> play_band_in_;    ///< x_b of backlash's drive-line play: the band's side, in

@@ -25,7 +25,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("backlash")) {
     const common::YamlSection b = s.section("backlash");
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
-                  "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share"});
+                  "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
+                  "takeup_stroke_in"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -36,6 +37,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.takeup_length_in = b.get_double_in("takeup_length_in", 0.1, 1e-4, 10.0);
     x.takeup_force_share = b.get_double_in("takeup_force_share", 0.0, 0.0, 1.0);
     x.takeup_forward_share = b.get_double_in("takeup_forward_share", 0.5, 0.0, 1.0);
+    x.takeup_stroke_in = b.get_double_in("takeup_stroke_in", 0.0, 0.0, 100.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
@@ -54,13 +56,16 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("actuator_lag")) {
     const common::YamlSection a = s.section("actuator_lag");
-    a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio", "delay_s", "rate_limit_in_per_s"});
+    a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio", "delay_s", "rate_limit_in_per_s",
+                  "lagged_share", "extend_time_ratio"});
     ActuatorLagEffect x;
     x.time_constant_s = a.get_double_in("time_constant_s", 0.0, 100.0);
     x.natural_period_s = a.get_double_in("natural_period_s", 0.0, 0.0, 100.0);
     x.damping_ratio = a.get_double_in("damping_ratio", 1.0, 0.01, 100.0);
     x.delay_s = a.get_double_in("delay_s", 0.0, 0.0, 10.0);
     x.rate_limit_in_per_s = a.get_double_in("rate_limit_in_per_s", 0.0, 0.0, 1e6);
+    x.lagged_share = a.get_double_in("lagged_share", 1.0, 0.0, 1.0);
+    x.extend_time_ratio = a.get_double_in("extend_time_ratio", 1.0, 0.01, 100.0);
     e.actuator_lag = x;
   }
   if (s.has("asymmetry")) {
@@ -204,7 +209,8 @@ std::vector<EffectSpec> build_library() {
       "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
       "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - L), N x (1 - "
       "takeup_force_share L), L = takeup_dip exp(-s/takeup_length) (x 2h_t into forward motion, x 2(1 - h_t) into "
-      "backward, h_t = takeup_forward_share; at most 0.95), s = drum travel since the last reversal; "
+      "backward, h_t = takeup_forward_share; x min(1, S_p/takeup_stroke_in), S_p the previous stroke's travel; at most "
+      "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel)",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
@@ -217,7 +223,8 @@ std::vector<EffectSpec> build_library() {
        {"takeup_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
        {"play_in", 0.0, 0.25, 0.0, 0.04, false},
        {"play_release_per_in", 0.0, 60.0, 0.0, 10.0, false, true},
-       {"takeup_forward_share", 0.0, 1.0, 0.5, 0.5, false, true}},
+       {"takeup_forward_share", 0.0, 1.0, 0.5, 0.5, false, true},
+       {"takeup_stroke_in", 0.0, 3.0, 0.0, 1.0, false}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -232,12 +239,14 @@ std::vector<EffectSpec> build_library() {
         b.play_in = t[8];
         b.play_release_per_in = t[9];
         b.takeup_forward_share = t[10];
+        b.takeup_stroke_in = t[11];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
         return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
-                                   b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share};
+                                   b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
+                                   b.takeup_stroke_in};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -266,12 +275,16 @@ std::vector<EffectSpec> build_library() {
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
-      "Eq. (4) with y_k: x_d = x_k(t - t_d) moving at most r per s, dx~_k/dt = (x_d - x~_k)/tau_a, y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
-      {{"time_constant_s", 0.0, 0.6, 0.0, 0.08, false},
+      "Eq. (4) with (1 - a) x_k + a y_k: x_d = x_k(t - t_d) moving at most r per s, dx~_k/dt = (x_d - x~_k)/tau, "
+      "tau = tau_a (x_d < x~_k), rho_e tau_a (x_d > x~_k), "
+      "y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
+      {{"time_constant_s", 0.0, 1.5, 0.0, 0.08, false},
        {"natural_period_s", 0.0, 1.5, 0.0, 0.15, false},
        {"damping_ratio", 0.05, 2.0, 1.0, 0.3, true},
        {"delay_s", 0.0, 0.3, 0.0, 0.05, false},
-       {"rate_limit_in_per_s", 0.02, 2.0, 2.0, 0.1, true}},
+       {"rate_limit_in_per_s", 0.02, 2.0, 2.0, 0.1, true},
+       {"lagged_share", 0.0, 1.0, 1.0, 0.5, false, true},
+       {"extend_time_ratio", 0.1, 10.0, 1.0, 3.0, true}},
       &ModelEffects::actuator_lag,
       std::function<ActuatorLagEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ActuatorLagEffect a;
@@ -280,11 +293,14 @@ std::vector<EffectSpec> build_library() {
         a.damping_ratio = t[2];
         a.delay_s = t[3];
         a.rate_limit_in_per_s = t[4];
+        a.lagged_share = t[5];
+        a.extend_time_ratio = t[6];
         return a;
       }),
       std::function<std::vector<double>(const ActuatorLagEffect&)>([](const ActuatorLagEffect& a) {
         return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio, a.delay_s,
-                                   a.rate_limit_in_per_s > 0.0 ? a.rate_limit_in_per_s : ActuatorLagEffect::kNoRateLimitInPerS};
+                                   a.rate_limit_in_per_s > 0.0 ? a.rate_limit_in_per_s : ActuatorLagEffect::kNoRateLimitInPerS,
+                                   a.lagged_share, a.extend_time_ratio};
       })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force; one band's speed law, fade or run-in",
@@ -477,9 +493,12 @@ std::vector<EffectSpec> build_library() {
   };
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
+                    {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
-                        {"delay_s"}, {"rate_limit_in_per_s"}});                        // transport delay, rate limit
+                        {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)
+                        {"time_constant_s", "extend_time_ratio"},  // slower (faster) one way
+                        {"delay_s"}, {"rate_limit_in_per_s"}});  // transport delay, rate limit
   // Each property by direction with where the difference sits (forward_share: both bands, or one).
   mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
                      {"stribeck_speed", "viscous", "forward_share"},

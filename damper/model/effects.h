@@ -41,6 +41,12 @@
 ///    per direction on the BRFD: a slack in one band only is a one-way take-up; blind set 15 t15);
 ///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
 ///    start the last direction is the sign of the initial band force and s is large (engaged).
+///    The loss by the stroke before the reversal (takeup_stroke_in = L_s, added 2026-11-27 after
+///    outside authors' collapse scaled by the energy stored in the taut band over the previous
+///    stroke, blind set 23 t25, and lost motion proportional to it, set 22 t26): a × min(1, S_p/L_s),
+///    S_p the drum travel between the last two reversals (a longer stroke stretches the band
+///    further, and more of its grip is lost when it unloads; belt creep, Johnson 1985 ch. 8;
+///    Cao et al. 2015); L_s = 0: the same loss after every stroke.
 ///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
 ///    outside authors wrote backlash as play between the actuator and the drum, sets 12 and 13): the
 ///    band sees the drum through a backlash operator of half-width δ_p (Tao & Kokotović 1996; Nordin
@@ -81,6 +87,16 @@
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
 ///      dx̃_k/dt = (x_k − x̃_k)/τ_a,   ÿ_k = ω² (x̃_k − y_k) − 2ζω ẏ_k,  ω = 2π/T
 ///    (τ_a = 0: x̃ = x; T = 0: y = x̃); x̃_k(0) = y_k(0) = x'_k, ẏ_k(0) = 0.
+///    Part of the clamping at once, the rest late (lagged_share = a, added 2026-11-27 after an
+///    outside author's Zener creep of the clamping travel, blind set 23 t28, τ 0.8 s, share 0.36,
+///    named pretension): Eq. (4) uses (1 − a) x_k + a y_k — the standard linear solid (Zener)
+///    between actuator and band, whose instantaneous and delayed compliances share the travel
+///    (Findley et al. 1976, ch. 5); a = 1 is the whole chain. The diagnose search runs τ_a to 1.5 s.
+///    A lag by the direction of travel (extend_time_ratio = ρ_e, added 2026-11-27 after an outside
+///    author's clamping that tightens fast and releases slowly, blind set 22 t05): dx̃_k/dt =
+///    (x_d − x̃_k)/τ_k, τ_k = ρ_e τ_a while x_d > x̃_k (the actuator extends, the band slackens), τ_a
+///    while it retracts — an electric actuator driving against the band load one way and assisted by
+///    it the other (Ogata, Modern Control Engineering, nonlinear actuator elements).
 ///    Before the lags (twelfth session; the classic servo-actuator chain of real-time hybrid
 ///    testing, e.g. Horiuchi et al. 1999 delay, Dyke et al. 1995 actuator dynamics; an outside author's
 ///    rate-limited actuator, blind set 17, was outside the family): a transport delay t_d
@@ -287,6 +303,8 @@ struct BacklashEffect {
   /// h_t in [0, 1]: the take-up by band, a × 2 h_t after a reversal into forward motion, × 2 (1 − h_t)
   /// into backward motion (0.5: the same both ways; 1 or 0: one band only); the loss at most 0.95.
   double takeup_forward_share = 0.5;
+  /// L_s: the loss scales with the previous stroke as min(1, S_p/L_s), in (0: not at all).
+  double takeup_stroke_in = 0.0;
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
   /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
@@ -316,6 +334,12 @@ struct ActuatorLagEffect {
   double damping_ratio = 1.0;     ///< ζ of the second-order response (> 0)
   double delay_s = 0.0;           ///< t_d: transport delay before the lags, s (0 = none)
   double rate_limit_in_per_s = 0.0;  ///< r: the fastest the actuators move, in/s (0 or >= 2: no limit)
+  /// a: the share of the clamping that follows the chain; the rest follows the actuators at once,
+  /// x_eff = (1 − a) x + a y (1 = all of it lags, the default; a standard linear solid's creep).
+  double lagged_share = 1.0;
+  /// ρ_e: the first-order lag's time constant is ρ_e τ_a while the actuator extends ahead of x̃
+  /// (x > x̃, the band slackening), τ_a while it retracts (1: the same both ways).
+  double extend_time_ratio = 1.0;
   /// No limit from here on (the diagnose search's end): 5 × the fastest actuator motion of the
   /// measured tests.
   static constexpr double kNoRateLimitInPerS = 2.0;

@@ -932,10 +932,10 @@ TEST(Effects, RetensioningSpringIsInvertedAndRisesGradually) {
   EXPECT_NEAR((m.spring_force_kip(0.2 + dz) - m.spring_force_kip(0.2)) / dz, s0, 1e-3 * s0);
 }
 
-// actuator_lag's transport delay and rate limit (drum at rest; Eq. (4) read back as the actuator
+// actuator_lag's transport delay, rate limit, partial and one-way lags (drum at rest; Eq. (4) read back as the actuator
 // position it sees): with a delay t_d a ramp of actuator 1 is seen as x(t − t_d), x'_1 before t_d;
 // with a rate limit r a step Δx is seen as the ramp x'_1 + sign(Δx) min(r t, |Δx|).
-TEST(Effects, ActuatorDelayAndRateLimitAsTheirClosedForms) {
+TEST(Effects, ActuatorLagMechanismsFollowTheirClosedForms) {
   BrfdParams p = synthetic_base();
   BrfdParams q = synthetic_base();
   const BrfdModel plain(q);
@@ -981,6 +981,42 @@ TEST(Effects, ActuatorDelayAndRateLimitAsTheirClosedForms) {
     BrfdModel free(p);
     free.step(in, dt);
     EXPECT_NEAR(seen(free, in), x0 + dx, 1e-9);
+  }
+  {
+    // A share a of the clamping late (Zener creep): a step Δx is seen as
+    // x'_1 + Δx (1 − a e^(−t/τ_a)), the share 1 − a at once (the discrete lag is exact for a held step).
+    const double tau = 0.8, share = 0.36, dx = -0.02;
+    p.effects.actuator_lag = ActuatorLagEffect{tau, 0.0, 1.0, 0.0, 0.0, share};
+    BrfdModel m(p);
+    in.actuator1_in = x0 + dx;
+    double worst = 0.0;
+    for (int i = 1; i <= 1024; ++i) {
+      m.step(in, dt);
+      const double expected = x0 + dx * (1.0 - share * std::exp(-i * dt / tau));
+      worst = std::max(worst, std::abs(seen(m, in) - expected));
+    }
+    EXPECT_LT(worst, 1e-9);
+    EXPECT_GT(std::abs(dx) * share * std::exp(-1.0 / tau), 1e-3) << "still 2e-3 in behind after 1 s";
+  }
+  {
+    // By the direction of travel: a retraction Δx < 0 is followed with τ_a, the extension back with
+    // ρ_e τ_a: x'_1 + (x̃(1 s) − x'_1) e^(−t/(ρ_e τ_a)).
+    const double tau = 0.1, ratio = 4.0, dx = -0.02;
+    p.effects.actuator_lag = ActuatorLagEffect{tau, 0.0, 1.0, 0.0, 0.0, 1.0, ratio};
+    BrfdModel m(p);
+    double worst = 0.0;
+    in.actuator1_in = x0 + dx;
+    for (int i = 1; i <= 1024; ++i) {
+      m.step(in, dt);
+      worst = std::max(worst, std::abs(seen(m, in) - (x0 + dx * (1.0 - std::exp(-i * dt / tau)))));
+    }
+    const double reached = x0 + dx * (1.0 - std::exp(-1024 * dt / tau));
+    in.actuator1_in = x0;
+    for (int i = 1; i <= 1024; ++i) {
+      m.step(in, dt);
+      worst = std::max(worst, std::abs(seen(m, in) - (x0 + (reached - x0) * std::exp(-i * dt / (ratio * tau)))));
+    }
+    EXPECT_LT(worst, 1e-9);
   }
 }
 
@@ -1181,35 +1217,52 @@ TEST(Effects, TakeUpLowersTheGripAfterAReversalAndRestoresItWithTravel) {
 }
 
 // backlash's take-up with f = 1 (takeup_force_share): the bristle state is that of the model without
-// it and the band force is scaled, F = (1 − a e^(−s/λ)) F_plain (σ1 = σ2 = 0), at any σ0, through a
-// reversal and the re-loading after it.
+// it and the band force is scaled, F = (1 − a min(1, S_p/L_s) e^(−s/λ)) F_plain (σ1 = σ2 = 0), at any
+// σ0, through a reversal and the re-loading after it; S_p the travel of the stroke before the
+// reversal (takeup_stroke_in = L_s; 0: min(...) = 1). The strokes grow, 0.48 to 1.6 in, across L_s.
 TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
   BrfdParams plain = coulomb_band();
-  BrfdParams p = plain;
   const double a = 0.5, lambda = 0.05, dt = 1e-3;
-  p.effects.backlash = BacklashEffect{};
-  p.effects.backlash->takeup_dip = a;
-  p.effects.backlash->takeup_length_in = lambda;
-  p.effects.backlash->takeup_force_share = 1.0;
-  BrfdModel m(p), ref(plain);
-  m.set_bristle_in(m.bristle_for_force(1.0));
-  ref.set_bristle_in(ref.bristle_for_force(1.0));
-  DamperInput in;
-  double travel = 1e3, worst = 0.0, deepest = 1.0;
-  int last = 1;
-  for (int i = 0; i < 4000; ++i) {
-    in.drum_vel_in_per_s = 1.5 * std::sin(2.0 * M_PI * 0.5 * i * dt);  // reversals at 1 s, 2 s, 3 s
-    const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
-    if (dir != 0 && dir != last) travel = 0.0;
-    if (dir != 0) last = dir;
-    travel += std::abs(in.drum_vel_in_per_s) * dt;
-    const double scale = 1.0 - a * std::exp(-travel / lambda);
-    const double f = m.step(in, dt), f_plain = ref.step(in, dt);
-    worst = std::max(worst, std::abs(f - scale * f_plain));
-    deepest = std::min(deepest, scale);
+  for (const double stroke_in : {0.0, 1.0}) {
+    BrfdParams p = plain;
+    p.effects.backlash = BacklashEffect{};
+    p.effects.backlash->takeup_dip = a;
+    p.effects.backlash->takeup_length_in = lambda;
+    p.effects.backlash->takeup_force_share = 1.0;
+    p.effects.backlash->takeup_stroke_in = stroke_in;
+    BrfdModel m(p), ref(plain);
+    m.set_bristle_in(m.bristle_for_force(1.0));
+    ref.set_bristle_in(ref.bristle_for_force(1.0));
+    DamperInput in;
+    double travel = 1e3, stroke = 0.0, previous = 0.0, worst = 0.0, deepest = 1.0, shallowest = 0.0;
+    int last = 1;
+    for (int i = 0; i < 4000; ++i) {
+      const double amplitude = 0.75 + 0.6 * std::floor(i * dt);  // in/s, a larger stroke each second
+      in.drum_vel_in_per_s = amplitude * std::sin(2.0 * M_PI * 0.5 * i * dt);  // reversals at 1 s, 2 s, 3 s
+      const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
+      if (dir != 0 && dir != last) {
+        travel = 0.0;
+        previous = stroke;
+        stroke = 0.0;
+      }
+      if (dir != 0) last = dir;
+      travel += std::abs(in.drum_vel_in_per_s) * dt;
+      stroke += std::abs(in.drum_vel_in_per_s) * dt;
+      const double by_stroke = stroke_in > 0.0 ? std::min(1.0, previous / stroke_in) : 1.0;
+      const double scale = 1.0 - a * by_stroke * std::exp(-travel / lambda);
+      const double f = m.step(in, dt), f_plain = ref.step(in, dt);
+      worst = std::max(worst, std::abs(f - scale * f_plain));
+      if (travel < 1e-2) {
+        deepest = std::min(deepest, scale);
+        shallowest = std::max(shallowest, scale);
+      }
+    }
+    EXPECT_LT(worst, 1e-9) << "L_s " << stroke_in;
+    EXPECT_LT(deepest, 0.6) << "L_s " << stroke_in;  // the dip was there
+    if (stroke_in > 0.0) {
+      EXPECT_GT(shallowest, 0.7) << "after the 0.48 in stroke only half the dip";
+    }
   }
-  EXPECT_LT(worst, 1e-9);
-  EXPECT_LT(deepest, 0.6);  // the dip was there
 }
 
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
