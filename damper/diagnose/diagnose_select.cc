@@ -407,6 +407,35 @@ std::size_t parameter_index(const EffectSpec& spec, const std::string& name) {
 
 }  // namespace
 
+namespace {
+
+// Each mechanism of `spec` alone (candidate_subfamilies), the other parameters at their null values
+// or at a mechanism's "name=value".
+std::vector<EffectSpec> mechanism_subfamilies(const EffectSpec& spec) {
+  std::vector<double> null_values;
+  for (const EffectParameter& p : spec.parameters) null_values.push_back(p.null_value);
+  std::vector<EffectSpec> out;
+  for (const std::vector<std::string>& group : spec.mechanisms) {
+    std::vector<std::size_t> free_index;
+    std::vector<double> values = null_values;
+    for (const std::string& entry : group) {
+      const std::size_t eq = entry.find('=');
+      if (eq == std::string::npos) {
+        free_index.push_back(parameter_index(spec, entry));
+      } else {  // "name=value": held at that value in this mechanism (self_energizing's origin of d)
+        values[parameter_index(spec, entry.substr(0, eq))] = std::stod(entry.substr(eq + 1));
+      }
+    }
+    std::sort(free_index.begin(), free_index.end());
+    out.push_back(make_subfamily(spec, free_index, values));
+    const auto own = spec.mechanism_regimes.find(out.size() - 1);
+    if (own != spec.mechanism_regimes.end()) out.back().regimes = own->second;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_levels) {
   const std::size_t n = spec.rest_level.size();
   if (n > 0 && rest_levels > 0 && static_cast<std::size_t>(rest_levels) < n) {
@@ -432,12 +461,21 @@ std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_l
       shape.push_back(parameter_index(spec, name));
       fixed[shape.back()] = spec.parameters[shape.back()].null_value;
     }
+    // The parameters of the family's other mechanisms (residual_static's ring-down) at their null
+    // values here; each mechanism is its own sub-family after the rest levels.
+    std::vector<std::size_t> other;
+    for (const std::vector<std::string>& group : spec.mechanisms)
+      for (const std::string& name : group) {
+        other.push_back(parameter_index(spec, name));
+        fixed[other.back()] = spec.parameters[other.back()].null_value;
+      }
     std::vector<EffectSpec> out;
     for (const bool shape_free : {false, true}) {
       if (shape_free && shape.empty()) break;
       for (unsigned bits : choices) {
         std::vector<std::size_t> free_index;
         for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+          if (std::find(other.begin(), other.end(), j) != other.end()) continue;
           const auto r = std::find(at.begin(), at.end(), j);
           const bool is_shape = std::find(shape.begin(), shape.end(), j) != shape.end();
           if (is_shape ? shape_free : (r == at.end() || ((bits >> (r - at.begin())) & 1u)))
@@ -446,29 +484,13 @@ std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_l
         out.push_back(make_subfamily(spec, free_index, fixed));
       }
     }
+    std::vector<EffectSpec> mechanisms = mechanism_subfamilies(spec);
+    out.insert(out.end(), mechanisms.begin(), mechanisms.end());
     out.push_back(spec);  // the whole family last: kept only where it predicts the unseen rests better
     return out;
   }
   if (spec.mechanisms.empty()) return {spec};
-  std::vector<double> null_values;
-  for (const EffectParameter& p : spec.parameters) null_values.push_back(p.null_value);
-  std::vector<EffectSpec> out;
-  for (const std::vector<std::string>& group : spec.mechanisms) {
-    std::vector<std::size_t> free_index;
-    std::vector<double> values = null_values;
-    for (const std::string& entry : group) {
-      const std::size_t eq = entry.find('=');
-      if (eq == std::string::npos) {
-        free_index.push_back(parameter_index(spec, entry));
-      } else {  // "name=value": held at that value in this mechanism (self_energizing's origin of d)
-        values[parameter_index(spec, entry.substr(0, eq))] = std::stod(entry.substr(eq + 1));
-      }
-    }
-    std::sort(free_index.begin(), free_index.end());
-    out.push_back(make_subfamily(spec, free_index, values));
-    const auto own = spec.mechanism_regimes.find(out.size() - 1);
-    if (own != spec.mechanism_regimes.end()) out.back().regimes = own->second;
-  }
+  std::vector<EffectSpec> out = mechanism_subfamilies(spec);
   out.push_back(spec);
   return out;
 }

@@ -88,6 +88,9 @@ void BrfdModel::reset() {
   slow_speed_ = kInitialSlowSpeed;
   held_z_in_ = 0.0;
   rest_time_s_ = 0.0;
+  ring_time_s_ = -1.0;
+  ring_sign_ = 0.0;
+  reversal_time_s_ = -1.0;
   rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
@@ -435,7 +438,29 @@ double BrfdModel::step(const DamperInput& in, double dt_s) {
 }
 
 double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
-  const double force = step_states_with_effects(in, dt_s);
+  double force = step_states_with_effects(in, dt_s);
+  // backlash's impact ring after the last reversal (effects.h), from the step the reversal was seen.
+  const BacklashEffect* bl = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
+  if (bl && bl->impact_rings() && reversal_time_s_ >= 0.0) {
+    const double t = reversal_time_s_ - dt_s, phase = 2.0 * M_PI * bl->impact_frequency_hz * t;
+    force += last_direction_ * std::exp(-t / bl->impact_decay_s) *
+             (bl->impact_sin_kip * std::sin(phase) + bl->impact_cos_kip * std::cos(phase));
+  }
+  // residual_static's ring-down while the drum is still (effects.h): from the step the drum speed
+  // fell below v_rest, signed by the band force then; the bristle state is left alone.
+  const ResidualStaticEffect* rs = params_.effects.residual_static ? &*params_.effects.residual_static : nullptr;
+  if (rs && rs->ring_kip != 0.0) {
+    if (std::abs(in.drum_vel_in_per_s) >= ResidualStaticEffect::kRestSpeedInPerS) {
+      ring_time_s_ = -1.0;
+    } else if (ring_time_s_ < 0.0) {
+      ring_time_s_ = 0.0;
+      ring_sign_ = force > 0.0 ? 1.0 : force < 0.0 ? -1.0 : 0.0;
+    } else {
+      ring_time_s_ += dt_s;
+      force += rs->ring_kip * ring_sign_ * std::exp(-ring_time_s_ / rs->ring_decay_s) *
+               std::sin(2.0 * M_PI * rs->ring_frequency_hz * ring_time_s_);
+    }
+  }
   // Friction work of the step (pretension's wear), with the force at its end; with a recovery rate
   // k_r (thermal fade) the exact solution of dW/dt = |F v| − k_r W over the step.
   if (params_.effects.pretension && params_.effects.pretension->wear_per_kip_in != 0.0) {
@@ -542,19 +567,21 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   }
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
-  if (e.backlash && e.backlash->takeup_dip > 0.0) {
-    // backlash's take-up: a reversal is the speed passing the threshold against the last direction.
+  if (e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings())) {
+    // backlash's take-up and impact ring: a reversal is the speed passing the threshold against the last direction.
     const int direction = v >= BacklashEffect::kReversalSpeedInPerS ? 1 : v <= -BacklashEffect::kReversalSpeedInPerS ? -1 : 0;
     if (direction != 0 && direction != last_direction_) {
       if (last_direction_ != 0) {
         reversal_travel_in_ = 0.0;
         previous_stroke_in_ = stroke_travel_in_;
         stroke_travel_in_ = 0.0;
+        reversal_time_s_ = 0.0;
       }
       last_direction_ = direction;
     }
     reversal_travel_in_ = std::min(reversal_travel_in_ + speed * dt_s, kEngagedTravelIn);
     stroke_travel_in_ += speed * dt_s;
+    if (reversal_time_s_ >= 0.0) reversal_time_s_ += dt_s;
   }
   if (e.residual_static) {
     slow_speed_ = speed + (slow_speed_ - speed) * std::exp(-dt_s / ResidualStaticEffect::kSpeedFilterS);

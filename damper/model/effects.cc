@@ -26,7 +26,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection b = s.section("backlash");
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
-                  "takeup_stroke_in"});
+                  "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -38,13 +38,18 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.takeup_force_share = b.get_double_in("takeup_force_share", 0.0, 0.0, 1.0);
     x.takeup_forward_share = b.get_double_in("takeup_forward_share", 0.5, 0.0, 1.0);
     x.takeup_stroke_in = b.get_double_in("takeup_stroke_in", 0.0, 0.0, 100.0);
+    x.impact_sin_kip = b.get_double_in("impact_sin_kip", 0.0, -50.0, 50.0);
+    x.impact_cos_kip = b.get_double_in("impact_cos_kip", 0.0, -50.0, 50.0);
+    x.impact_frequency_hz = b.get_double_in("impact_frequency_hz", 5.0, 1e-3, 1e3);
+    x.impact_decay_s = b.get_double_in("impact_decay_s", 0.15, 1e-4, 1e4);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent", "held_change_kip"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent", "held_change_kip",
+                  "ring_kip", "ring_frequency_hz", "ring_decay_s"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
@@ -52,6 +57,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
     x.relaxation_exponent = r.get_double_in("relaxation_exponent", 1.0, 0.05, 1.0);
     x.held_change_kip = r.get_double_in("held_change_kip", 0.0, -50.0, 50.0);
+    x.ring_kip = r.get_double_in("ring_kip", 0.0, -50.0, 50.0);
+    x.ring_frequency_hz = r.get_double_in("ring_frequency_hz", 3.0, 1e-3, 1e3);
+    x.ring_decay_s = r.get_double_in("ring_decay_s", 0.5, 1e-4, 1e4);
     e.residual_static = x;
   }
   if (s.has("actuator_lag")) {
@@ -212,7 +220,8 @@ std::vector<EffectSpec> build_library() {
       "backward, h_t = takeup_forward_share; x min(1, S_p/takeup_stroke_in), S_p the previous stroke's travel; at most "
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
-      "falls as exp(-play_release_per_in x travel)",
+      "falls as exp(-play_release_per_in x travel); impact ring: F += d exp(-t/tau_i) (A_s sin 2 pi f_i t + A_c cos 2 pi f_i t), "
+      "t since the reversal into direction d",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
@@ -224,7 +233,11 @@ std::vector<EffectSpec> build_library() {
        {"play_in", 0.0, 0.25, 0.0, 0.04, false},
        {"play_release_per_in", 0.0, 60.0, 0.0, 10.0, false, true},
        {"takeup_forward_share", 0.0, 1.0, 0.5, 0.5, false, true},
-       {"takeup_stroke_in", 0.0, 3.0, 0.0, 1.0, false}},
+       {"takeup_stroke_in", 0.0, 3.0, 0.0, 1.0, false},
+       {"impact_sin_kip", -2.0, 2.0, 0.0, 0.2, false},
+       {"impact_cos_kip", -2.0, 2.0, 0.0, 0.2, false},
+       {"impact_frequency_hz", 1.0, 20.0, 5.0, 5.0, true},
+       {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -240,24 +253,33 @@ std::vector<EffectSpec> build_library() {
         b.play_release_per_in = t[9];
         b.takeup_forward_share = t[10];
         b.takeup_stroke_in = t[11];
+        b.impact_sin_kip = t[12];
+        b.impact_cos_kip = t[13];
+        b.impact_frequency_hz = t[14];
+        b.impact_decay_s = t[15];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
         return std::vector<double>{b.slack_in, b.retension_in, b.stiffness_ratio, b.release_ratio,
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
-                                   b.takeup_stroke_in};
+                                   b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
+                                   b.impact_decay_s};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), S(z_r) = (1 - m) S(z_held) + m S(z_o) + sign(z_held) held_change, "
-      "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) exp(-(t_rest/tau_r)^beta)",
+      "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) exp(-(t_rest/tau_r)^beta); "
+      "ring-down: F += R sign(F_stop) exp(-t_s/tau_g) sin(2 pi f_g t_s) while |v| < 0.05 in/s, t_s since then",
       {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
        {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
        {"relaxed_share", 0.0, 1.0, 0.0, 1.0, false, true},
        {"offset_kip", -3.0, 3.0, 0.0, 0.0, false},
        {"relaxation_exponent", 0.15, 1.0, 1.0, 0.5, true},
-       {"held_change_kip", -3.0, 3.0, 0.0, 0.0, false}},
+       {"held_change_kip", -3.0, 3.0, 0.0, 0.0, false},
+       {"ring_kip", -3.0, 3.0, 0.0, 0.3, false},
+       {"ring_frequency_hz", 0.5, 15.0, 3.0, 3.0, true},
+       {"ring_decay_s", 0.05, 3.0, 0.5, 0.5, true}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
@@ -267,11 +289,14 @@ std::vector<EffectSpec> build_library() {
         r.offset_kip = t[3];
         r.relaxation_exponent = t[4];
         r.held_change_kip = t[5];
+        r.ring_kip = t[6];
+        r.ring_frequency_hz = t[7];
+        r.ring_decay_s = t[8];
         return r;
       }),
       std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
-        return std::vector<double>{r.ratio, r.time_constant_s, r.relaxed_share, r.offset_kip, r.relaxation_exponent,
-                                   r.held_change_kip};
+        return std::vector<double>{r.ratio,          r.time_constant_s, r.relaxed_share,     r.offset_kip, r.relaxation_exponent,
+                                   r.held_change_kip, r.ring_kip,       r.ring_frequency_hz, r.ring_decay_s};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
@@ -485,6 +510,7 @@ std::vector<EffectSpec> build_library() {
     if (s.name == "residual_static") {
       s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}, {"held_change_kip", 0.0}};
       s.rest_shape = {"relaxation_exponent"};
+      s.mechanisms = {{"ring_kip", "ring_frequency_hz", "ring_decay_s"}};  // beside the rest levels: the ring-down
     }
   // Physical mechanisms of each family (EffectSpec::mechanisms).
   auto mech = [&lib](const std::string& name, std::vector<std::vector<std::string>> groups) {
@@ -494,6 +520,7 @@ std::vector<EffectSpec> build_library() {
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
+                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s"},  // impact ring at re-engagement
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)

@@ -47,6 +47,13 @@
 ///    S_p the drum travel between the last two reversals (a longer stroke stretches the band
 ///    further, and more of its grip is lost when it unloads; belt creep, Johnson 1985 ch. 8;
 ///    Cao et al. 2015); L_s = 0: the same loss after every stroke.
+///    Impact ring at re-engagement (impact_sin_kip = A_s, impact_cos_kip = A_c, impact_frequency_hz =
+///    f_i, impact_decay_s = τ_i; added 2026-11-27 after an outside author's clearance impact ringing
+///    at each re-engagement, blind set 23 t30): ΔF = d e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t),
+///    t the time since the last reversal (as for the take-up) and d its new direction — the band and
+///    drive line struck when the clearance closes ring as a damped mass-spring (Dubowsky &
+///    Freudenstein 1971, J. Eng. Industry 93:305); the sine and cosine amplitudes carry its phase
+///    (an impulse, a force step). It adds to the force and leaves the bristle state.
 ///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
 ///    outside authors wrote backlash as play between the actuator and the drum, sets 12 and 13): the
 ///    band sees the drum through a backlash operator of half-width δ_p (Tao & Kokotović 1996; Nordin
@@ -82,6 +89,15 @@
 ///    authors' residual band tension building up at rest in the last slip direction and a
 ///    logarithmic creep by a set amount, blind set 20 t01 and t26, both beyond a share m of the
 ///    held force or a level of Fc): the rest target moves by Δ_h in the direction of the held force.
+///    Ring-down after the stop (ring_kip = R, ring_frequency_hz = f_g, ring_decay_s = τ_g, added
+///    2026-11-27 after an outside author's damped ring-down of the held force after each stop, blind
+///    set 22 t28, from the compliance of the rig and band in series with the friction contact):
+///    while the drum is still, ΔF = R sign(F_stop) e^(−t_s/τ_g) sin(2π f_g t_s), t_s the time since
+///    the drum speed fell below v_rest and F_stop the band force then — the free response of the
+///    band–drum–rig mass-spring-damper to the stop, which starts from the held force without a jump
+///    (Ibrahim 1994, Appl. Mech. Rev. 47:209; Johannes, Green & Brockley 1973, Wear 24:381). It adds
+///    to the force and leaves the bristle state; a reversal, which passes below v_rest for a few ms,
+///    barely starts it. Its own mechanism (diagnose: EffectSpec::mechanisms).
 ///  - actuator_lag (time_constant_s = τ_a, natural_period_s = T, damping_ratio = ζ): the
 ///    kinetic friction follows the actuator motion through a first-order lag and a second-order
 ///    response (the electric actuator and band as a mass-spring-damper): Eq. (4) uses y_k,
@@ -305,6 +321,14 @@ struct BacklashEffect {
   double takeup_forward_share = 0.5;
   /// L_s: the loss scales with the previous stroke as min(1, S_p/L_s), in (0: not at all).
   double takeup_stroke_in = 0.0;
+  /// Impact ring at re-engagement (A_s = impact_sin_kip, A_c = impact_cos_kip, f_i =
+  /// impact_frequency_hz, τ_i = impact_decay_s): ΔF = d e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t)
+  /// for the time t since the last reversal into direction d (A_s = A_c = 0: none).
+  double impact_sin_kip = 0.0;
+  double impact_cos_kip = 0.0;
+  double impact_frequency_hz = 5.0;
+  double impact_decay_s = 0.15;
+  bool impact_rings() const { return impact_sin_kip != 0.0 || impact_cos_kip != 0.0; }
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
   /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
@@ -324,6 +348,12 @@ struct ResidualStaticEffect {
   /// (> 0 the band tightens, residual band tension building up; < 0 it slackens by a set amount
   /// whatever force it held, as a creeping contact does).
   double held_change_kip = 0.0;
+  /// Ring-down after the stop (R = ring_kip, f_g = ring_frequency_hz, τ_g = ring_decay_s):
+  /// ΔF = R sign(F_stop) e^(−t_s/τ_g) sin(2π f_g t_s) while the drum is still, t_s the time since its
+  /// speed fell below v_rest (0: none).
+  double ring_kip = 0.0;
+  double ring_frequency_hz = 3.0;
+  double ring_decay_s = 0.5;
   static constexpr double kRestSpeedInPerS = 0.05;  ///< v_rest
   static constexpr double kSpeedFilterS = 0.05;     ///< τ_s of the low-passed speed s̃
 };

@@ -310,6 +310,40 @@ TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
   }
 }
 
+// residual_static's ring-down (ring_kip R, ring_frequency_hz f_g, ring_decay_s τ_g): from the step the
+// drum stops, the force is that of the same model without the ring plus R sign(F_stop) e^(−t/τ_g)
+// sin(2π f_g t), forward and backward; while the drum slides there is no ring. Fails with the ring
+// unsigned, its clock not restarted at each stop, or acting while the drum moves.
+TEST(Effects, RingDownAfterTheStopIsAddedToTheHeldForce) {
+  BrfdParams plain = coulomb_band();
+  plain.effects.residual_static = ResidualStaticEffect{};
+  plain.effects.residual_static->ratio = 0.5;
+  plain.effects.residual_static->time_constant_s = 0.3;
+  BrfdParams p = plain;
+  const double ring = 0.4, hz = 4.0, decay = 0.3, dt = 1e-3;
+  p.effects.residual_static->ring_kip = ring;
+  p.effects.residual_static->ring_frequency_hz = hz;
+  p.effects.residual_static->ring_decay_s = decay;
+  BrfdModel m(p), ref(plain);
+  DamperInput in;
+  double worst_rest = 0.0, worst_moving = 0.0, largest = 0.0;
+  for (const double dir : {1.0, -1.0}) {
+    in.drum_vel_in_per_s = dir;
+    for (int i = 0; i < 2000; ++i) worst_moving = std::max(worst_moving, std::abs(m.step(in, dt) - ref.step(in, dt)));
+    in.drum_vel_in_per_s = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+      const double t = i * dt;  // the first still step starts the clock
+      const double expected = dir * ring * std::exp(-t / decay) * std::sin(2.0 * M_PI * hz * t);
+      const double d = m.step(in, dt) - ref.step(in, dt);
+      worst_rest = std::max(worst_rest, std::abs(d - expected));
+      largest = std::max(largest, std::abs(d));
+    }
+  }
+  EXPECT_LT(worst_rest, 1e-12);
+  EXPECT_LT(worst_moving, 1e-12);
+  EXPECT_GT(largest, 0.5 * ring);  // the ring was there
+}
+
 // residual_static's set change of the held force (held_change_kip Δ_h): with m = 0 the rest target is
 // the held force moved by Δ_h in its own direction, F(t) = F_h + sign(F_h) Δ_h (1 − exp(−((t − t*)/τ_r)^β))
 // after the freeze at t*: the band tightens (Δ_h > 0, residual band tension building up) or slackens
@@ -1263,6 +1297,44 @@ TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
       EXPECT_GT(shallowest, 0.7) << "after the 0.48 in stroke only half the dip";
     }
   }
+}
+
+// backlash's impact ring: from the step a reversal is seen (the speed passing 0.05 in/s against the
+// last direction), the force is that of the model without it plus d e^(−t/τ_i) (A_s sin 2π f_i t +
+// A_c cos 2π f_i t), d the new direction; none before the first reversal. Fails with d dropped or the
+// clock not restarted at each reversal.
+TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
+  BrfdParams plain = coulomb_band();
+  BrfdParams p = plain;
+  p.effects.backlash = BacklashEffect{};
+  const double a_sin = 0.3, a_cos = -0.1, hz = 8.0, decay = 0.1, dt = 1e-3;
+  p.effects.backlash->impact_sin_kip = a_sin;
+  p.effects.backlash->impact_cos_kip = a_cos;
+  p.effects.backlash->impact_frequency_hz = hz;
+  p.effects.backlash->impact_decay_s = decay;
+  BrfdModel m(p), ref(plain);
+  m.set_bristle_in(m.bristle_for_force(1.0));
+  ref.set_bristle_in(ref.bristle_for_force(1.0));
+  DamperInput in;
+  double worst = 0.0, largest = 0.0, t = -1.0;
+  int last = 1;
+  for (int i = 0; i < 4000; ++i) {
+    in.drum_vel_in_per_s = 1.5 * std::cos(2.0 * M_PI * 0.5 * i * dt);  // forward first: reversals near 0.5, 1.5, 2.5, 3.5 s
+    const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
+    if (dir != 0 && dir != last) {
+      t = 0.0;
+      last = dir;
+    } else if (t >= 0.0) {
+      t += dt;
+    }
+    const double w = 2.0 * M_PI * hz * t;
+    const double expected = t < 0.0 ? 0.0 : last * std::exp(-t / decay) * (a_sin * std::sin(w) + a_cos * std::cos(w));
+    const double d = m.step(in, dt) - ref.step(in, dt);
+    worst = std::max(worst, std::abs(d - expected));
+    largest = std::max(largest, std::abs(d));
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_GT(largest, 0.15);  // the ring was there
 }
 
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
