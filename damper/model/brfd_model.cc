@@ -91,6 +91,7 @@ void BrfdModel::reset() {
   ring_time_s_ = -1.0;
   ring_sign_ = 0.0;
   reversal_time_s_ = -1.0;
+  reversal_force_kip_ = last_force_kip_ = 0.0;
   rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
@@ -439,11 +440,13 @@ double BrfdModel::step(const DamperInput& in, double dt_s) {
 
 double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   double force = step_states_with_effects(in, dt_s);
+  last_force_kip_ = force;
   // backlash's impact ring after the last reversal (effects.h), from the step the reversal was seen.
   const BacklashEffect* bl = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
   if (bl && bl->impact_rings() && reversal_time_s_ >= 0.0) {
     const double t = reversal_time_s_ - dt_s, phase = 2.0 * M_PI * bl->impact_frequency_hz * t;
-    force += last_direction_ * std::exp(-t / bl->impact_decay_s) *
+    const double scale = 1.0 - bl->impact_force_share + bl->impact_force_share * std::abs(reversal_force_kip_);
+    force += last_direction_ * scale * std::exp(-t / bl->impact_decay_s) *
              (bl->impact_sin_kip * std::sin(phase) + bl->impact_cos_kip * std::cos(phase));
   }
   // residual_static's ring-down while the drum is still (effects.h): from the step the drum speed
@@ -576,6 +579,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
         previous_stroke_in_ = stroke_travel_in_;
         stroke_travel_in_ = 0.0;
         reversal_time_s_ = 0.0;
+        reversal_force_kip_ = last_force_kip_;
       }
       last_direction_ = direction;
     }

@@ -26,7 +26,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection b = s.section("backlash");
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
-                  "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s"});
+                  "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
+                  "impact_force_share"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -42,6 +43,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.impact_cos_kip = b.get_double_in("impact_cos_kip", 0.0, -50.0, 50.0);
     x.impact_frequency_hz = b.get_double_in("impact_frequency_hz", 5.0, 1e-3, 1e3);
     x.impact_decay_s = b.get_double_in("impact_decay_s", 0.15, 1e-4, 1e4);
+    x.impact_force_share = b.get_double_in("impact_force_share", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
@@ -221,7 +223,7 @@ std::vector<EffectSpec> build_library() {
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel); impact ring: F += d exp(-t/tau_i) (A_s sin 2 pi f_i t + A_c cos 2 pi f_i t), "
-      "t since the reversal into direction d",
+      "x ((1 - h_i) + h_i |F_rev|/1 kip), t since the reversal into direction d, F_rev the force before it",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
@@ -237,7 +239,8 @@ std::vector<EffectSpec> build_library() {
        {"impact_sin_kip", -2.0, 2.0, 0.0, 0.2, false},
        {"impact_cos_kip", -2.0, 2.0, 0.0, 0.2, false},
        {"impact_frequency_hz", 1.0, 20.0, 5.0, 5.0, true},
-       {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true}},
+       {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true},
+       {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -257,6 +260,7 @@ std::vector<EffectSpec> build_library() {
         b.impact_cos_kip = t[13];
         b.impact_frequency_hz = t[14];
         b.impact_decay_s = t[15];
+        b.impact_force_share = t[16];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -264,7 +268,7 @@ std::vector<EffectSpec> build_library() {
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
-                                   b.impact_decay_s};
+                                   b.impact_decay_s, b.impact_force_share};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -520,7 +524,7 @@ std::vector<EffectSpec> build_library() {
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
-                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s"},  // impact ring at re-engagement
+                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share"},  // impact ring
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)

@@ -53,7 +53,10 @@
 ///    t the time since the last reversal (as for the take-up) and d its new direction — the band and
 ///    drive line struck when the clearance closes ring as a damped mass-spring (Dubowsky &
 ///    Freudenstein 1971, J. Eng. Industry 93:305); the sine and cosine amplitudes carry its phase
-///    (an impulse, a force step). It adds to the force and leaves the bristle state.
+///    (an impulse, a force step). It adds to the force and leaves the bristle state. The energy that
+///    strikes grows with the band force released at the reversal (impact_force_share = h_i): the
+///    amplitudes × ((1 − h_i) + h_i |F_rev|/1 kip), F_rev the force just before the reversal (an
+///    outside author's impact pair, blind set 24 t12, rang in proportion to it).
 ///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
 ///    outside authors wrote backlash as play between the actuator and the drum, sets 12 and 13): the
 ///    band sees the drum through a backlash operator of half-width δ_p (Tao & Kokotović 1996; Nordin
@@ -328,6 +331,9 @@ struct BacklashEffect {
   double impact_cos_kip = 0.0;
   double impact_frequency_hz = 5.0;
   double impact_decay_s = 0.15;
+  /// h_i in [0, 1]: the ring's amplitudes scale as (1 − h_i) + h_i |F_rev|/(1 kip), F_rev the band
+  /// force just before the reversal (0: a set amplitude; 1: in proportion to the force released).
+  double impact_force_share = 0.0;
   bool impact_rings() const { return impact_sin_kip != 0.0 || impact_cos_kip != 0.0; }
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in

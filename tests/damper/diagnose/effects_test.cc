@@ -1300,41 +1300,49 @@ TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
 }
 
 // backlash's impact ring: from the step a reversal is seen (the speed passing 0.05 in/s against the
-// last direction), the force is that of the model without it plus d e^(−t/τ_i) (A_s sin 2π f_i t +
-// A_c cos 2π f_i t), d the new direction; none before the first reversal. Fails with d dropped or the
-// clock not restarted at each reversal.
+// last direction), the force is that of the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t +
+// A_c cos 2π f_i t), d the new direction, s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of
+// the step before the reversal; none before the first reversal. Fails with d dropped, the clock not
+// restarted at each reversal, or h_i ignored.
 TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
   BrfdParams plain = coulomb_band();
-  BrfdParams p = plain;
-  p.effects.backlash = BacklashEffect{};
   const double a_sin = 0.3, a_cos = -0.1, hz = 8.0, decay = 0.1, dt = 1e-3;
-  p.effects.backlash->impact_sin_kip = a_sin;
-  p.effects.backlash->impact_cos_kip = a_cos;
-  p.effects.backlash->impact_frequency_hz = hz;
-  p.effects.backlash->impact_decay_s = decay;
-  BrfdModel m(p), ref(plain);
-  m.set_bristle_in(m.bristle_for_force(1.0));
-  ref.set_bristle_in(ref.bristle_for_force(1.0));
-  DamperInput in;
-  double worst = 0.0, largest = 0.0, t = -1.0;
-  int last = 1;
-  for (int i = 0; i < 4000; ++i) {
-    in.drum_vel_in_per_s = 1.5 * std::cos(2.0 * M_PI * 0.5 * i * dt);  // forward first: reversals near 0.5, 1.5, 2.5, 3.5 s
-    const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
-    if (dir != 0 && dir != last) {
-      t = 0.0;
-      last = dir;
-    } else if (t >= 0.0) {
-      t += dt;
+  for (const double share : {0.0, 1.0}) {
+    BrfdParams p = plain;
+    p.effects.backlash = BacklashEffect{};
+    p.effects.backlash->impact_sin_kip = a_sin;
+    p.effects.backlash->impact_cos_kip = a_cos;
+    p.effects.backlash->impact_frequency_hz = hz;
+    p.effects.backlash->impact_decay_s = decay;
+    p.effects.backlash->impact_force_share = share;
+    BrfdModel m(p), ref(plain);
+    m.set_bristle_in(m.bristle_for_force(1.0));
+    ref.set_bristle_in(ref.bristle_for_force(1.0));
+    DamperInput in;
+    double worst = 0.0, largest = 0.0, t = -1.0, before = 0.0, released = 0.0;
+    int last = 1;
+    for (int i = 0; i < 4000; ++i) {
+      // forward first, a stronger stroke each second: reversals near 0.5, 1.5, 2.5, 3.5 s
+      in.drum_vel_in_per_s = (0.5 + 0.5 * std::floor(i * dt + 0.5)) * std::cos(2.0 * M_PI * 0.5 * i * dt);
+      const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
+      if (dir != 0 && dir != last) {
+        t = 0.0;
+        last = dir;
+        released = before;
+      } else if (t >= 0.0) {
+        t += dt;
+      }
+      const double w = 2.0 * M_PI * hz * t, scale = 1.0 - share + share * std::abs(released);
+      const double expected =
+          t < 0.0 ? 0.0 : last * scale * std::exp(-t / decay) * (a_sin * std::sin(w) + a_cos * std::cos(w));
+      before = ref.step(in, dt);
+      const double d = m.step(in, dt) - before;
+      worst = std::max(worst, std::abs(d - expected));
+      largest = std::max(largest, std::abs(d));
     }
-    const double w = 2.0 * M_PI * hz * t;
-    const double expected = t < 0.0 ? 0.0 : last * std::exp(-t / decay) * (a_sin * std::sin(w) + a_cos * std::cos(w));
-    const double d = m.step(in, dt) - ref.step(in, dt);
-    worst = std::max(worst, std::abs(d - expected));
-    largest = std::max(largest, std::abs(d));
+    EXPECT_LT(worst, 1e-12) << "h_i " << share;
+    EXPECT_GT(largest, 0.15) << "h_i " << share;  // the ring was there
   }
-  EXPECT_LT(worst, 1e-12);
-  EXPECT_GT(largest, 0.15);  // the ring was there
 }
 
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
