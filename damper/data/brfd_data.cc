@@ -94,9 +94,13 @@ std::vector<double> centered_moving_average(const std::vector<double>& x, int ha
   for (long i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + x[i];
   std::vector<double> y(n);
   for (long i = 0; i < n; ++i) {
-    // Symmetric window, shrunk symmetrically at the ends so that it stays zero-phase.
-    const long h = std::min<long>({half_width, i, n - 1 - i});
-    y[i] = (prefix[i + h + 1] - prefix[i - h]) / static_cast<double>(2 * h + 1);
+    // Symmetric (zero-phase) window inside the record; at the ends the window is clipped to the
+    // samples it still covers. Shrinking it symmetrically to a single sample instead left the end
+    // samples unsmoothed: a derived drum velocity of one displacement quantum per sample
+    // (0.06 in/s) at the first and last sample of a record at rest, a fake motion that an effect
+    // triggered by reversals answered with a force jump (blind set 24 t12).
+    const long lo = std::max<long>(0, i - half_width), hi = std::min<long>(n - 1, i + half_width);
+    y[i] = (prefix[hi + 1] - prefix[lo]) / static_cast<double>(hi - lo + 1);
   }
   return y;
 }
@@ -217,7 +221,7 @@ BrfdTest read_brfd_test(const std::string& path, const BrfdReadOptions& opt) {
     o << std::setprecision(4) << t.name() << ": velocity column is 1/" << 1.0 / ratio
       << " of d(displacement)/dt (known quirk of the semi-active files): drum velocity derived "
          "from the displacement by central differences + "
-      << 2 * opt.smoothing_half_width + 1 << "-sample zero-phase moving average";
+      << 2 * opt.smoothing_half_width + 1 << "-sample centred moving average (clipped to the record at its ends)";
     t.notes.push_back(o.str());
   } else {
     const std::vector<double> col_s = centered_moving_average(vel_column, opt.smoothing_half_width);

@@ -79,7 +79,8 @@ BrfdTest read_brfd_test(const std::string& path, const BrfdReadOptions& options 
 
 /// Central differences (one-sided at the ends) of `x` sampled every dt_s.
 std::vector<double> central_difference(const std::vector<double>& x, double dt_s);
-/// Zero-phase centred moving average of width 2*half_width+1 (window shrinks at the ends).
+/// Centred moving average of width 2*half_width+1, zero-phase inside the record; at the ends the
+/// window is clipped to the samples it covers (the average of those).
 std::vector<double> centered_moving_average(const std::vector<double>& x, int half_width);
 /// Drum velocity (in/s) derived from displacement: central differences + moving average.
 std::vector<double> derive_velocity(const std::vector<double>& disp_in, double dt_s,

@@ -103,7 +103,7 @@ BrfdTest read_run_csv(const std::string& path, const BrfdReadOptions& opt) {
   t.velocity_derived = true;
   t.notes.push_back(t.name() + ": recorded run (CSV): drum velocity derived from " +
                     header[static_cast<std::size_t>(c_d)] + " by central differences + " +
-                    std::to_string(2 * opt.smoothing_half_width + 1) + "-sample zero-phase moving average");
+                    std::to_string(2 * opt.smoothing_half_width + 1) + "-sample centred moving average (clipped to the record at its ends)");
   return t;
 }
 

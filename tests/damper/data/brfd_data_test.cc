@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace damper {
 namespace {
@@ -47,6 +48,29 @@ TEST(BrfdData, DerivesVelocityWhenTheColumnHasTheSemiactiveQuirk) {
   // Derived velocity = d/dt sin(2πt) = 2π cos(2πt), away from the ends.
   for (std::size_t i = 20; i < 380; i += 40)
     EXPECT_NEAR(t.drum_vel_in_per_s[i], 2 * M_PI * std::cos(2 * M_PI * t.time_s[i]), 0.02) << i;
+}
+
+// A drum at rest whose displacement reads one quantum higher at the last sample (the encoder's
+// least count, 5.86e-5 in at 1024 Hz): the derived velocity there is that quantum spread over the
+// smoothing window, as anywhere inside the record, not one quantum per sample (0.06 in/s, a fake
+// motion that reversal-triggered effects answered with a force jump). A ramp's velocity stays
+// exact to the last sample.
+TEST(BrfdData, DerivedVelocityAtTheRecordEndsIsSmoothedLikeInside) {
+  const double dt = 1.0 / 1024.0, q = 5.86e-5;
+  const int h = 7;
+  std::vector<double> rest(200, 0.0);
+  rest.back() = q;
+  rest.front() = q;
+  const std::vector<double> v = derive_velocity(rest, dt, h);
+  // Central differences: q/(2 dt) at the second-to-last sample, q/dt one-sided at the last; the
+  // clipped window averages the last h + 1 of them.
+  EXPECT_NEAR(v.back(), 1.5 * q / dt / (h + 1), 1e-12);
+  EXPECT_NEAR(v.front(), -1.5 * q / dt / (h + 1), 1e-12);
+  EXPECT_LT(std::abs(v.back()), 0.02);
+  std::vector<double> ramp(200);
+  for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = 0.3 * dt * static_cast<double>(i);
+  const std::vector<double> vr = derive_velocity(ramp, dt, h);
+  for (std::size_t i = 0; i < vr.size(); ++i) EXPECT_NEAR(vr[i], 0.3, 1e-9) << i;
 }
 
 TEST(BrfdData, WrongColumnCountNamesFileAndRow) {

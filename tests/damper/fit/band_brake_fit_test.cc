@@ -34,7 +34,10 @@ TEST(BandBrakeValidation, EarthquakeAndSemiactiveOnACiSubset) {
   c.tests.push_back({kData + "earthquake-profiles/KocaeliMCE.json", "earthquake", std::make_pair(6144, 14336), 1.0});
   c.tests.push_back({kData + "semiactive/harmonic0.015forward.json", "semiactive", std::nullopt, 1.0});
   c.band_brake_fit.global_max_evals = 800;
-  c.band_brake_fit.global_runs = 1;
+  // Best of two global runs: with one run the semi-active passive-window fit of seed 1 stopped
+  // at a local optimum (RMSE/std 0.131 after a change of the derived velocity in the record's
+  // first and last 7 samples; seeds 2-4 gave 0.080-0.087).
+  c.band_brake_fit.global_runs = 2;
   c.band_brake_fit.local_max_evals = 800;
   c.lugre_global_max_evals = 600;
   c.lugre_global_runs = 1;
