@@ -303,6 +303,9 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("actuator_lag", "partial", {0.8, 0.0, 1.0, 0.0, 2.0, 0.5, 1.0}));
   // Tightens with τ 0.05 s, releases (actuators extending) four times slower.
   c.push_back(library_case("actuator_lag", "one_way", {0.05, 0.0, 1.0, 0.0, 2.0, 1.0, 4.0}));
+  // The clamping rings after each actuator motion: a second-order response of period 1.1 s, ζ 0.3
+  // (its envelope decays over 0.6 s, after the actuators stopped).
+  c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
   c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
   c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // Stribeck speed and σ2 by direction

@@ -26,6 +26,27 @@ bool signature_holds(const CandidateScore& c, const DiagnoseOptions& o) {
          (c.signature_share >= o.signature_share_floor && signature_density(c) >= o.signature_density);
 }
 
+double actuator_settle_s(const ModelEffects& e) {
+  if (!e.actuator_lag) return 0.0;
+  const ActuatorLagEffect& a = *e.actuator_lag;
+  double t = a.delay_s;
+  if (a.time_constant_s > 0.0) t += 3.0 * a.time_constant_s * std::max(1.0, a.extend_time_ratio);
+  if (a.natural_period_s > 0.0) t += 3.0 * a.natural_period_s / (2.0 * M_PI * std::max(a.damping_ratio, 1e-3));
+  return std::min(t, kMaxActuatorSettleS);
+}
+
+std::vector<std::uint8_t> moving_or_settling(const Segmentation& seg, double dt_s, double settle_s) {
+  std::vector<std::uint8_t> m = seg.actuators_moving;
+  const double none = -std::numeric_limits<double>::infinity();
+  double last_moving_s = none;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const double t = static_cast<double>(i) * dt_s;
+    if (seg.actuators_moving[i]) last_moving_s = t;
+    else if (last_moving_s > none && t - last_moving_s <= settle_s) m[i] = 1;
+  }
+  return m;
+}
+
 namespace {
 
 using common::format_significant;
@@ -118,12 +139,14 @@ struct SignatureTally {
 constexpr double kStopLevelS = 0.05;
 
 void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
-                    const FoldPredictions& fp, const EffectSpec& spec, const SegmentationOptions& so, SignatureTally& tally) {
+                    const FoldPredictions& fp, const EffectSpec& spec, double settle_s, const SegmentationOptions& so,
+                    SignatureTally& tally) {
   auto has = [&spec](const char* g) { return std::find(spec.regimes.begin(), spec.regimes.end(), g) != spec.regimes.end(); };
   const bool at_rest = has("after_stop"), actuators = has("actuators");
   double own = 0.0, other = 0.0, rest = 0.0;
   for (const HeldOutPart& p : fold.parts) {
     const DiagnoseRecord& r = recs[p.record];
+    const std::vector<std::uint8_t> acting = moving_or_settling(r.seg, r.test.dt_s, actuators ? settle_s : 0.0);
     std::vector<double> r0(r.test.size()), r1(r.test.size());
     for (std::size_t i = 0; i < r0.size(); ++i) {
       r0[i] = null_fp.pred[p.record][i] - r.test.force_kip[i];
@@ -137,7 +160,7 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
       // through them (the drum and the actuators are independent axes: a speed law acts while
       // the actuators are displaced too).
-      const bool moving = actuators && !r.seg.actuators_moving.empty() && r.seg.actuators_moving[i];
+      const bool moving = actuators && !acting.empty() && acting[i];
       if (g == Regime::after_stop) {
         // After the stop only the change of the force from the level it stopped with counts: that
         // level is what every effect before the stop set, its change at rest is residual_static's
@@ -692,7 +715,8 @@ RoundOutcome run_round(int round, const std::vector<DiagnoseRecord>& recs, const
         n += static_cast<double>(p.end - p.begin);
       }
       s.heldout_energy += fold_energy(recs, fold, fp, o.segmentation);
-      signature_gain(recs, fold, null_pred[f], fp, *spec, o.segmentation, tally);
+      signature_gain(recs, fold, null_pred[f], fp, *spec, null_result || spec->name != "actuator_lag" ? 0.0 : actuator_settle_s(fit.effects), o.segmentation,
+                     tally);
       cand_pred[c].push_back(std::move(fp));
       if (f == 0) s.theta = whole.present(fit.effects) ? whole.get(fit.effects) : std::vector<double>{};  // fold 1's
     }

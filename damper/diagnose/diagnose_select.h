@@ -83,6 +83,22 @@ std::vector<std::string> parameters_at_outer_bounds(const CandidateScore& c);
 /// or none of its gain; infinite when all of it).
 double signature_density(const CandidateScore& c);
 
+/// The longest settling actuator_settle_s gives: the longest lag the actuator_lag family searches, s.
+constexpr double kMaxActuatorSettleS = 1.5;
+
+/// How long after the actuators stop the clamping of a fitted actuator_lag still moves, s: the
+/// delay plus three time constants of each lag in its chain (95 % settled: 3 τ_a, ρ_e τ_a for the
+/// slower direction; the second-order response's envelope decays at ζω, 3/(ζω) = 3T/(2πζ)), at most
+/// kMaxActuatorSettleS; 0 without the effect. Gate (3) counts these samples as the effect's own
+/// regime as well as those where the actuators are displaced: its physics acts there as much
+/// (blind set 25 t07: a clamping ringing at 1.17 s, ζ 0.31, fitted exactly, removed 97 % of the
+/// excess with 33 % of its gain while they were displaced, and was not named).
+double actuator_settle_s(const ModelEffects& e);
+
+/// Per sample: the actuators are displaced (Segmentation::actuators_moving) or were, at most
+/// settle_s ago.
+std::vector<std::uint8_t> moving_or_settling(const Segmentation& seg, double dt_s, double settle_s);
+
 /// Gate (3): the signature holds when at least options.signature_share of the gain sits in the
 /// effect's own regimes, or at least options.signature_share_floor of it with a density there of at
 /// least options.signature_density.

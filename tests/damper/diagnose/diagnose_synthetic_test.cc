@@ -355,6 +355,47 @@ TEST(DiagnoseSelection, SignatureHoldsForAConcentratedGainNotForAnEvenOne) {
 // (4/5)^5 (1 − (4/5)^5) = 22 % of resamples; every resample with one better part gains at least
 // 6 % of the held-out mean square (> 5 %), so only the draw of the worse part five times, 1/3125,
 // leaves it unchosen.
+// Gate (3)'s own regime of actuator_lag: the actuators displaced, and after they return the time its
+// fitted chain takes to settle — three time constants of each lag (e^-3 = 5 %), after the delay; a
+// second-order response's envelope decays as e^(-ζ ω t), ω = 2π/T.
+TEST(DiagnoseSelection, ActuatorLagOwnsTheTimeItsClampingSettlesAfterTheActuatorsStop) {
+  ModelEffects e;
+  EXPECT_EQ(actuator_settle_s(e), 0.0);
+  ActuatorLagEffect a;
+  a.time_constant_s = 0.1;
+  e.actuator_lag = a;
+  EXPECT_NEAR(actuator_settle_s(e), 0.3, 1e-12);
+  a.extend_time_ratio = 4.0;  // the slower direction sets it
+  e.actuator_lag = a;
+  EXPECT_NEAR(actuator_settle_s(e), 1.2, 1e-12);
+  a = ActuatorLagEffect{};
+  a.delay_s = 0.05;
+  a.natural_period_s = 0.4;
+  a.damping_ratio = 0.5;
+  e.actuator_lag = a;
+  const double omega = 2.0 * M_PI / 0.4;
+  EXPECT_NEAR(actuator_settle_s(e), 0.05 + 3.0 / (0.5 * omega), 1e-12);
+  EXPECT_NEAR(std::exp(-0.5 * omega * (actuator_settle_s(e) - 0.05)), std::exp(-3.0), 1e-12);
+  a.natural_period_s = 1.1;  // 1.75 s: capped at the longest lag searched
+  a.damping_ratio = 0.3;
+  e.actuator_lag = a;
+  EXPECT_EQ(actuator_settle_s(e), kMaxActuatorSettleS);
+
+  // The mask: displaced over samples [100, 200) at 100 Hz, settling 0.305 s: own through sample
+  // 229 (0.30 s after the last displaced one), then not.
+  Segmentation seg;
+  seg.actuators_moving.assign(400, 0);
+  for (std::size_t i = 100; i < 200; ++i) seg.actuators_moving[i] = 1;
+  const std::vector<std::uint8_t> m = moving_or_settling(seg, 0.01, 0.305);
+  std::size_t own = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) own += m[i];
+  EXPECT_EQ(own, 130u);
+  EXPECT_EQ(m[99], 0);
+  EXPECT_EQ(m[229], 1);
+  EXPECT_EQ(m[230], 0);
+  EXPECT_EQ(moving_or_settling(seg, 0.01, 0.0), seg.actuators_moving);
+}
+
 TEST(DiagnoseSelection, AResampleDrawingARecordAsItsWorsePartStillCountsTheChoice) {
   DiagnoseOptions o;
   CandidateScore c;
