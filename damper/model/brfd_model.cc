@@ -235,6 +235,11 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   if (e.asymmetry)  // each band its level difference: constant, its own speed law, its own fade (effects.h)
     factor *= e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
   if (e.velocity) factor *= rate_factor(speed);
+  // velocity's flash temperature by the load: the kinetic level × φ_T = 1 − c Fc |v|^n_T, the
+  // stiction level × (1 − w_T + w_T φ_T) (effects.h).
+  double kinetic_only = 1.0;
+  if (e.velocity && e.velocity->flash_load_per_kip != 0.0)
+    kinetic_only = std::max(0.2, 1.0 - e.velocity->flash_load_per_kip * fc * std::pow(speed, e.velocity->flash_speed_exponent));
   if (e.backlash && e.backlash->takeup_dip > 0.0) {
     // Grip lost at the last reversal, taken up with travel: the capacity, and the share f of it in
     // the band force at once (f = 1: the bristle state unchanged, the force scaled; effects.h).
@@ -248,8 +253,8 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     factor *= 1.0 - lost;
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
-  fc *= factor;
-  fs *= factor;
+  fc *= factor * kinetic_only;
+  fs *= factor * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0);
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
   return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension, b};
 }
@@ -321,6 +326,18 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   const double r = (ve && ve->stribeck_lag_s > 0.0 ? stribeck_speed_ : std::abs(v)) / vs;
   const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
+  if (e.self_energizing && e.self_energizing->brake_factor_per_kip != 0.0) {
+    // Leading/trailing brake factor by the friction level: g / (1 − λ g), ρ_s λ moving backward (effects.h).
+    const double lambda = e.self_energizing->brake_factor_per_kip * (forward ? 1.0 : e.self_energizing->servo_backward_ratio);
+    const double w = e.self_energizing->brake_factor_stiction_share;
+    const double whole = f.g / std::max(1.0 - lambda * f.g, 0.25);  // w = 1: on g(v)
+    double kinetic = whole;
+    if (w < 1.0) {  // w = 0: on Eq. (4)'s Fc only, Fs kept: Fc' + (Fs − Fc') shape
+      const double fc = l.fc / std::max(1.0 - lambda * l.fc, 0.25);
+      kinetic = std::max(f.g + (fc - l.fc) * (1.0 - shape), 1e-6);
+    }
+    f.g = w * whole + (1.0 - w) * kinetic;
+  }
   f.tension = l.tension;
   if (ve && ve->stribeck_lag_s > 0.0 && ve->lag_viscous_share > 0.0) {
     f.viscous_velocity = v + ve->lag_viscous_share * (lagged_velocity_ - v);

@@ -101,7 +101,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection v = s.section("velocity");
     v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
-                  "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s"});
+                  "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s",
+                  "flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -116,6 +117,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.lag_viscous_share = v.get_double_in("lag_viscous_share", 0.0, 0.0, 1.0);
     x.flash_weakening = v.get_double_in("flash_weakening", 0.0, -1.0, 0.95);
     x.weakening_speed_in_per_s = v.get_double_in("weakening_speed_in_per_s", 1.0, 1e-3, 1e3);
+    x.flash_load_per_kip = v.get_double_in("flash_load_per_kip", 0.0, -1.0, 1.0);
+    x.flash_speed_exponent = v.get_double_in("flash_speed_exponent", 0.5, 0.05, 5.0);
+    x.flash_stiction_share = v.get_double_in("flash_stiction_share", 0.0, 0.0, 1.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -138,7 +142,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection p = s.section("self_energizing");
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
                   "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio",
-                  "servo_backward_ratio"});
+                  "servo_backward_ratio", "brake_factor_per_kip", "brake_factor_stiction_share"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -150,6 +154,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.drum_start_share = p.get_double_in("drum_start_share", 0.0, 0.0, 1.0);
     x.band_spring_neg_ratio = p.get_double_in("band_spring_neg_ratio", 1.0, 0.0, 10.0);
     x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -1.0, 1.0);
+    x.brake_factor_per_kip = p.get_double_in("brake_factor_per_kip", 0.0, -0.5, 0.5);
+    x.brake_factor_stiction_share = p.get_double_in("brake_factor_stiction_share", 1.0, 0.0, 1.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -375,7 +381,8 @@ std::vector<EffectSpec> build_library() {
       "g(v) = phi Fc + phi (Fs - Fc) exp(-|v_L/vs|^n), v_L = |v| lagged by tau_L; F += c_a v + c_q sgn(v) |v|^n_f (n_f = viscous_exponent); "
       "the viscous force sees v + lambda_v (v lagged by tau_L - v); "
       "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
-      "seen through the aging law over a slip distance D; levels x (1 - a_w (1 - v_w/|v|)) above v_w (flash heating) (config-only: + c_v |v| in g)",
+      "seen through the aging law over a slip distance D; levels x (1 - a_w (1 - v_w/|v|)) above v_w (flash heating), "
+      "Fc x phi_T, Fs x (1 - w_T + w_T phi_T), phi_T = 1 - c Fc |v|^n_T (flash temperature by the load) (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"rate_slope", -0.8, 0.8, 0.0, -0.05, false},
@@ -387,7 +394,10 @@ std::vector<EffectSpec> build_library() {
        {"viscous_exponent", 0.2, 3.0, 2.0, 0.7, true},
        {"lag_viscous_share", 0.0, 1.0, 0.0, 1.0, false, true},
        {"flash_weakening", -0.5, 0.8, 0.0, 0.2, false},
-       {"weakening_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true}},
+       {"weakening_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true},
+       {"flash_load_per_kip", -0.1, 0.3, 0.0, 0.05, false},
+       {"flash_speed_exponent", 0.25, 2.0, 0.5, 1.0, true},
+       {"flash_stiction_share", 0.0, 1.0, 0.0, 1.0, false, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -403,13 +413,17 @@ std::vector<EffectSpec> build_library() {
         v.lag_viscous_share = t[9];
         v.flash_weakening = t[10];
         v.weakening_speed_in_per_s = t[11];
+        v.flash_load_per_kip = t[12];
+        v.flash_speed_exponent = t[13];
+        v.flash_stiction_share = t[14];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
         return std::vector<double>{v.stribeck_exponent, v.added_viscous_kip_s_per_in, v.rate_slope,
                                    v.reference_speed_in_per_s, v.memory_in, v.direct_slope,
                                    v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s, v.viscous_exponent,
-                                   v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s};
+                                   v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s,
+                                   v.flash_load_per_kip, v.flash_speed_exponent, v.flash_stiction_share};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
@@ -446,7 +460,8 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1) + chi |N S(z)|, 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
-      "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start",
+      "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start; "
+      "brake factor: g / max(1 - lambda g, 0.25) for v >= 0, rho_s lambda for v < 0 (w = 1; w = 0: on Fc of Eq. (4) only, Fs kept)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
@@ -456,7 +471,9 @@ std::vector<EffectSpec> build_library() {
        {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false},
        {"drum_start_share", 0.0, 1.0, 0.0, 1.0, false},
        {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true},
-       {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false}},
+       {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false},
+       {"brake_factor_per_kip", -0.12, 0.12, 0.0, 0.03, false},
+       {"brake_factor_stiction_share", 0.0, 1.0, 1.0, 1.0, false, true}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -470,12 +487,15 @@ std::vector<EffectSpec> build_library() {
         p.drum_start_share = t[7];
         p.band_spring_neg_ratio = t[8];
         p.servo_backward_ratio = t[9];
+        p.brake_factor_per_kip = t[10];
+        p.brake_factor_stiction_share = t[11];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
                                    p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
-                                   p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio};
+                                   p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio,
+                                   p.brake_factor_per_kip, p.brake_factor_stiction_share};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -541,7 +561,9 @@ std::vector<EffectSpec> build_library() {
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2", "viscous_exponent"},  // power-law film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"},    // rate and state
-                    {"flash_weakening", "weakening_speed_in_per_s"}});                          // flash heating
+                    {"flash_weakening", "weakening_speed_in_per_s"},                            // flash heating
+                    {"flash_load_per_kip", "flash_speed_exponent"},                             // flash temperature by the load, on Fc
+                    {"flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share=1"}});  // and on Fs alike
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
   mech("pretension", {{"fs_share", "instant_share"},
@@ -559,6 +581,8 @@ std::vector<EffectSpec> build_library() {
                            {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
                            {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
+                           {"brake_factor_per_kip", "servo_backward_ratio"},  // leading/trailing brake factor by the level
+                           {"brake_factor_per_kip", "servo_backward_ratio", "brake_factor_stiction_share=0"},  // on Eq. (4)'s Fc only
                            {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},
                            {"band_spring_kip_per_in", "band_spring_neg_ratio"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
@@ -583,7 +607,7 @@ std::vector<EffectSpec> build_library() {
       for (std::size_t m = 0; m < s.mechanisms.size(); ++m) {
         auto has = [&](const char* p) { return std::find(s.mechanisms[m].begin(), s.mechanisms[m].end(), p) != s.mechanisms[m].end(); };
         if (has("band_spring_kip_per_in")) s.mechanism_regimes[m] = {"sliding", "actuators", "reversal", "sticking"};
-        if (has("band_force_per_kip")) s.mechanism_regimes[m] = {"sliding", "actuators", "reversal"};
+        if (has("band_force_per_kip") || has("brake_factor_per_kip")) s.mechanism_regimes[m] = {"sliding", "actuators", "reversal"};
       }
   // A sharper transition (α > 1) acts within the first travel after a reversal; a smoother one
   // (α < 1) approaches the sliding force α times as fast as LuGre, well into the stroke.

@@ -188,6 +188,16 @@
 ///    outside authors' high-speed weakening, blind sets 22 and 23): the levels × (1 − a_w (1 − v_w/|v|))
 ///    for |v| > v_w (Rice 2006: asperity contacts heat and weaken once they slide faster than they
 ///    conduct the heat away); 1 below v_w. Steady sliding tested.
+///    Flash temperature by the load (flash_load_per_kip = c, flash_speed_exponent = n_T, added
+///    2026-11-27 after an outside author's load-scaled flash temperature, blind set 25 t27): the
+///    contact temperature rise follows the frictional heat flux μ p v^n_T (Archard 1959, "The
+///    temperature of rubbing surfaces"; n_T = 1/2 at high Péclet number), so a band clamped
+///    harder weakens more at the same speed: the kinetic level Fc × (1 − c Fc |v|^n_T), Fc the
+///    direction's Eq. (4) level (kip, |v| in in/s), at least 0.2; Fs kept, as Eq. (5) keeps it under
+///    the actuators (the weakening grows from zero at rest), or weakened alike (flash_stiction_share
+///    w_T = 1: the friction g(v) at that speed as a whole; Fs × (1 − w_T + w_T φ_T)); the two are
+///    separate mechanisms. The weakening above has no load in it and scales both levels. Steady
+///    sliding tested.
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -247,6 +257,17 @@
 ///    with the band force itself, the same gain in both directions, where η/b differs by the
 ///    direction's b, about 2:1 on the BRFD):  φ_s = clamp(1 + η (|N_λ S(z)|/b − 1) + χ |N_λ S(z)|, 0.2, 3);
 ///    in steady sliding with η = 0, S = g/(1 − χ g) (Eytelwein-like growth with the level).
+///    The brake factor by the friction level (brake_factor_per_kip = λ, 1/kip; added 2026-11-27 after
+///    three outside authors, blind sets 24-26, wrote the leading/trailing shoe law of drum brakes,
+///    Limpert (1999), Spurr (1961): the friction level itself sets the servo, at every instant and
+///    by the direction of sliding):  g ← g / max(1 − λ g, 0.25) for v ≥ 0, g / max(1 − ρ_s λ g, 0.25)
+///    for v < 0 (ρ_s = −1: the trailing band de-energized). In steady sliding it equals χ = λ; it
+///    differs where the band force lags the level: after a reversal, at the stiction peak, while
+///    the actuators change the clamping (the χ servo follows |N S(z)|, this one g(v) at once).
+///    Where it acts (brake_factor_stiction_share = w): on the whole level g(v), stiction peak
+///    included (w = 1, two of the three authors), or on Eq. (4)'s kinetic level only,
+///    g = Fc' + (Fs − Fc') e^(−(v/vs)²) with Fc' = Fc/(1 − λ Fc) (w = 0: the clamping's own level,
+///    Fs kept as Eq. (5) keeps it under the actuators; the third author). g = w g_1 + (1 − w) g_0.
 ///    η, χ ≠ 0 make the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
 ///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
 ///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
@@ -442,6 +463,14 @@ struct VelocityEffect {
   /// they slide faster than they conduct the heat away); 0 = none, < 0 a strengthening.
   double flash_weakening = 0.0;
   double weakening_speed_in_per_s = 1.0;  ///< v_w, in/s (> 0)
+  /// c: flash temperature by the load, 1/kip: the kinetic level Fc × (1 − c Fc (|v| / 1 in/s)^n_T),
+  /// Fc the direction's level of Eq. (4) (Archard 1959: the flash temperature rise goes as μ p v^n_T,
+  /// the frictional heat flux; n_T = 1/2 at high Péclet number, 1 at low); Fs kept; 0 = none
+  double flash_load_per_kip = 0.0;
+  double flash_speed_exponent = 0.5;  ///< n_T (> 0)
+  /// w_T in [0, 1]: share of the stiction level Fs that weakens with Fc (0: Fs kept, the kinetic level
+  /// alone; 1: both levels, the friction g(v) at that speed as a whole)
+  double flash_stiction_share = 0.0;
   static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).
@@ -477,6 +506,12 @@ struct SelfEnergizingEffect {
   /// ρ_s in [−1, 1]: the self-servo's gains η, χ moving backward are ρ_s × those moving forward (1: the
   /// same both ways; −1: energizing one way and de-energizing the other, a leading/trailing shoe)
   double servo_backward_ratio = 1.0;
+  /// λ: the leading/trailing brake factor per kip of friction level, 1/kip: g ← g / (1 − λ g) moving
+  /// forward, g / (1 − ρ_s λ g) backward (the steady-state form of the self-servo; see file comment)
+  double brake_factor_per_kip = 0.0;
+  /// w in [0, 1]: the brake factor acts on the whole level g(v) (1) or on the kinetic level Fc of
+  /// Eq. (4) only, the stiction level Fs kept as Eq. (5) keeps it (0); a share between blends the two
+  double brake_factor_stiction_share = 1.0;
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

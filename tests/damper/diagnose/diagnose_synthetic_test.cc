@@ -526,11 +526,12 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     }
   }
   // self_energizing: the rotation and the band spring each from the start and from the drum's zero,
-  // the self-servo and the self-servo by direction, the whole family. The band spring, a force in
-  // parallel with the friction, has its own regimes (every state of the drum but the final rest); the
-  // self-servo acts through the loop after a reversal too; the others keep the family's.
+  // the self-servo and the self-servo by direction, the brake factor by the level (on g, on Fc only),
+  // the whole family. The band spring, a force in parallel with the friction, has its own regimes
+  // (every state of the drum but the final rest); the self-servo and the brake factor act through
+  // the loop after a reversal too; the others keep the family's.
   const std::vector<EffectSpec> se = candidate_subfamilies(effect_spec("self_energizing"), 0);
-  EXPECT_EQ(se.size(), 7u);
+  EXPECT_EQ(se.size(), 9u);
   for (std::size_t k = 0; k + 1 < se.size(); ++k) {
     const EffectSpec& sub = se[k];
     auto has = [&sub](const char* name) {
@@ -539,7 +540,7 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     };
     const std::vector<std::string> want =
         has("band_spring_kip_per_in") ? std::vector<std::string>{"sliding", "actuators", "reversal", "sticking"}
-        : has("band_force_per_kip")   ? std::vector<std::string>{"sliding", "actuators", "reversal"}
+        : has("band_force_per_kip") || has("brake_factor_per_kip") ? std::vector<std::string>{"sliding", "actuators", "reversal"}
                                       : effect_spec("self_energizing").regimes;
     EXPECT_EQ(sub.regimes, want) << sub.subfamily;
   }

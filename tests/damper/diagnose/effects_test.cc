@@ -1171,6 +1171,90 @@ TEST(Effects, AbsoluteSelfServoGainPerKipByDirection) {
   }
 }
 
+// velocity's flash temperature by the load (flash_load_per_kip = c, flash_speed_exponent = n_T):
+// Archard's flash temperature rise follows the heat flux μ p v^n_T, so the levels × (1 − c Fc |v|^n_T)
+// with Fc each direction's kinetic level. Closed form in steady sliding, Coulomb band (σ1 = σ2 = 0)
+// well above v_s: F = ±Fc (1 − c Fc |v|^n_T); the weakening at the same speed doubles with a level
+// twice as high. Near v_s the stiction excess sees Fs kept, g = Fc φ_T + (Fs − Fc φ_T) e^(−(v/v_s)²),
+// or (flash_stiction_share = 1) weakened alike, g = φ_T g_0.
+TEST(Effects, FlashTemperatureWeakeningGrowsWithTheLoadAndTheSpeed) {
+  BrfdParams p = coulomb_band();
+  p.lugre.vs_in_per_s = 0.01;  // the Stribeck excess gone at the speeds below
+  for (const double n : {0.5, 1.0})
+    for (const double c : {0.05, -0.03}) {
+      p.effects.velocity = VelocityEffect{};
+      p.effects.velocity->flash_load_per_kip = c;
+      p.effects.velocity->flash_speed_exponent = n;
+      for (const double v : {0.5, 2.0, -3.0}) {
+        const double fc = v > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+        const double exact = (v > 0 ? 1.0 : -1.0) * fc * (1.0 - c * fc * std::pow(std::abs(v), n));
+        EXPECT_NEAR(steady_sliding_force_kip(p, v), exact, 1e-6 * fc) << "c " << c << " n " << n << " v " << v;
+      }
+    }
+  // The load in it: the same relative weakening needs half the c at twice the level.
+  BrfdParams q = p;
+  q.lugre.fc_fwd_kip = 2.0 * p.lugre.fc_fwd_kip;
+  q.lugre.fs_fwd_kip = q.lugre.fc_fwd_kip;
+  p.effects.velocity->flash_load_per_kip = 0.08;
+  q.effects.velocity->flash_load_per_kip = 0.04;
+  EXPECT_NEAR(steady_sliding_force_kip(q, 2.0) / q.lugre.fc_fwd_kip, steady_sliding_force_kip(p, 2.0) / p.lugre.fc_fwd_kip, 1e-6);
+  // At v = v_s with Fs > Fc: the kinetic level weakened, Fs not.
+  BrfdParams r = coulomb_band();
+  r.lugre.fs_fwd_kip = 1.8 * r.lugre.fc_fwd_kip;
+  r.effects.velocity = VelocityEffect{};
+  r.effects.velocity->flash_load_per_kip = 0.1;
+  const double v = r.lugre.vs_in_per_s, fc = r.lugre.fc_fwd_kip, fs = r.lugre.fs_fwd_kip;
+  const double phi = 1.0 - 0.1 * fc * std::sqrt(v);
+  EXPECT_NEAR(steady_sliding_force_kip(r, v), fc * phi + (fs - fc * phi) * std::exp(-1.0), 1e-6 * fs);
+  // ... and with w_T = 1 the friction at that speed weakens as a whole, Fs too.
+  r.effects.velocity->flash_stiction_share = 1.0;
+  EXPECT_NEAR(steady_sliding_force_kip(r, v), phi * (fc + (fs - fc) * std::exp(-1.0)), 1e-6 * fs);
+}
+
+// self_energizing's brake factor by the friction level λ (brake_factor_per_kip): the leading/trailing
+// shoe law of drum brakes (Limpert 1999), g / (1 − λ g) moving forward and g / (1 − ρ_s λ g) moving
+// backward, capped where the denominator falls below 0.25 (a self-locking shoe). Closed form in steady
+// sliding at v >> v_s (σ1 = σ2 = 0, passive): F = ±g/(1 − gain g) with g each direction's Fc (the
+// same steady state as the χ servo; λ = 0.4 reaches the cap on the larger Fc).
+TEST(Effects, BrakeFactorByTheFrictionLevelAndDirection) {
+  BrfdParams p = coulomb_band();
+  ASSERT_NE(p.lugre.fc_fwd_kip, p.lugre.fc_bwd_kip);
+  for (const double ratio : {1.0, -1.0, 0.5})
+    for (const double lambda : {-0.08, 0.05, 0.1, 0.4}) {
+      p.effects.self_energizing = SelfEnergizingEffect{};
+      p.effects.self_energizing->brake_factor_per_kip = lambda;
+      p.effects.self_energizing->servo_backward_ratio = ratio;
+      BrfdModel m(p);
+      DamperInput in;
+      for (const double dir : {1.0, -1.0}) {
+        in.drum_vel_in_per_s = 4.0 * dir;
+        double f = 0.0;
+        for (int i = 0; i < 20000; ++i) {
+          in.drum_disp_in += in.drum_vel_in_per_s * 1e-4;
+          f = m.step(in, 1e-4);
+        }
+        const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+        const double gain = dir > 0 ? lambda : lambda * ratio;
+        EXPECT_NEAR(f, dir * g / std::max(1.0 - gain * g, 0.25), 1e-6 * g)
+            << "lambda " << lambda << " dir " << dir << " ratio " << ratio;
+      }
+    }
+  // Where it acts, at v = v_s (Stribeck shape e^(-1)), Fs > Fc: on the whole level g (w = 1),
+  // g/(1 − λ g); on Eq. (4)'s Fc only (w = 0), Fc' + (Fs − Fc') e^(-1), Fc' = Fc/(1 − λ Fc).
+  p.lugre.fs_fwd_kip = 1.8 * p.lugre.fc_fwd_kip;
+  for (const double w : {1.0, 0.0, 0.5}) {
+    const double lambda = 0.06;
+    p.effects.self_energizing = SelfEnergizingEffect{};
+    p.effects.self_energizing->brake_factor_per_kip = lambda;
+    p.effects.self_energizing->brake_factor_stiction_share = w;
+    const double fc = p.lugre.fc_fwd_kip, fs = p.lugre.fs_fwd_kip, shape = std::exp(-1.0);
+    const double g = fc + (fs - fc) * shape;
+    const double fc_kinetic = fc / (1.0 - lambda * fc);
+    const double exact = w * g / (1.0 - lambda * g) + (1.0 - w) * (fc_kinetic + (fs - fc_kinetic) * shape);
+    EXPECT_NEAR(steady_sliding_force_kip(p, p.lugre.vs_in_per_s), exact, 1e-6 * exact) << "w " << w;
+  }
+}
+
 // backlash's drive-line play (a backlash operator of half-width δ between the drum and the bands),
 // Coulomb band: after a reversal from steady forward sliding the band force is held across the
 // 2δ of play, falling only by e^(−κ s) with the drum travel s (κ = 0: held exactly), then the
