@@ -398,18 +398,22 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0, 0.0, 1.0}));
   // The leading/trailing brake factor by the level on Eq. (4)'s Fc only: Fc/(1 ∓ 0.05 Fc), Fs kept.
   c.push_back(library_case("self_energizing", "brake_factor", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.05, 0.0}));
-  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));  // a rounder transition than LuGre
+  // A capstan wrap by the drum position on Eq. (4)'s Fc only, from the start (Fs kept: stiction_share 0).
+  c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));  // a rounder transition than LuGre
   // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
-  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Elastic up to 30 % of the friction level, slip full from 61.5 % on (Dupont's z_max below the
   // steady state; unloading as LuGre).
-  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45}));
+  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5}));
   // Dahl's own exponent: dF/dx = σ0 |1 − F/g sgn v|^2.5 sgn(·), a slow rounded approach to sliding.
-  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Two contact elements: half the friction carried by one 5 times softer (Maxwell-slip).
-  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0}));
+  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5}));
+  // LuGre's micro-damping fading with the speed (Canudas de Wit et al. 1995), σ1' = 2 kip s/in, v_d = 0.4 in/s.
+  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

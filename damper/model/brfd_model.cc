@@ -225,12 +225,13 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
       fs *= psi;
     }
   }
+  double rotation = 1.0;  // self_energizing's rotation terms: on Fc, and on Fs by its share (effects.h)
   if (e.self_energizing) {
     const double kappa = forward ? e.self_energizing->drum_fwd_per_in : e.self_energizing->drum_bwd_per_in;
     const double d = rotation_in(in);
     const double ad = std::abs(d);
     const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
-    factor *= std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
+    rotation = std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
   }
   if (e.asymmetry)  // each band its level difference: constant, its own speed law, its own fade (effects.h)
     factor *= e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
@@ -253,8 +254,9 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     factor *= 1.0 - lost;
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
-  fc *= factor * kinetic_only;
-  fs *= factor * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0);
+  fc *= factor * kinetic_only * rotation;
+  fs *= factor * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0) *
+        (e.self_energizing ? 1.0 - e.self_energizing->stiction_share * (1.0 - rotation) : 1.0);
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
   return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension, b};
 }
@@ -312,6 +314,14 @@ double BrfdModel::initial_bristle_for_force(double f) const {
   return z - (f > 0.0 ? 1.0 : f < 0.0 ? -1.0 : 0.0) * slack * (1.0 - share);
 }
 
+double BrfdModel::servo_level_kip(double band_kip, const Frame& f) const {
+  if (!f.servo_on) return f.g;
+  // self_energizing's self-servo: g + (φ_s − 1) × the part of g it scales (Fc and Fs, or Fc only).
+  const double servo = std::clamp(1.0 - f.servo_share + f.servo * std::abs(band_kip), 0.2, 3.0);
+  if (f.servo_level == f.g) return f.g * servo;  // on both levels (w = 1)
+  return std::max(f.g + (servo - 1.0) * f.servo_level, 1e-6);
+}
+
 BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   // Everything the effects need at one input, computed once: g(v), N_λ, rest relaxation.
   const LugreParams& p = params_.lugre;
@@ -329,7 +339,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
   if (e.self_energizing && e.self_energizing->brake_factor_per_kip != 0.0) {
     // Leading/trailing brake factor by the friction level: g / (1 − λ g), ρ_s λ moving backward (effects.h).
     const double lambda = e.self_energizing->brake_factor_per_kip * (forward ? 1.0 : e.self_energizing->servo_backward_ratio);
-    const double w = e.self_energizing->brake_factor_stiction_share;
+    const double w = e.self_energizing->stiction_share;
     const double whole = f.g / std::max(1.0 - lambda * f.g, 0.25);  // w = 1: on g(v)
     double kinetic = whole;
     if (w < 1.0) {  // w = 0: on Eq. (4)'s Fc only, Fs kept: Fc' + (Fs − Fc') shape
@@ -357,6 +367,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
       f.servo *= e.self_energizing->servo_backward_ratio;
     }
     f.servo_on = true;
+    // The part of g that φ_s scales: all of it (stiction_share w = 1), or Eq. (4)'s kinetic level
+    // Fc (1 − e^(−(v/vs)²)) only, Fs kept (w = 0; effects.h).
+    const double w = e.self_energizing->stiction_share;
+    f.servo_level = w * f.g + (1.0 - w) * l.fc * (1.0 - shape);
   }
   if (e.residual_static) {
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
@@ -383,8 +397,7 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
 double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
   const double band = f.tension * spring_force_kip(z);
   // self_energizing's self-servo: Fc and Fs (so g) follow the force the band carries.
-  const double servo = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band), 0.2, 3.0) : 1.0;
-  const double y = band / (f.g * servo);  // force ratio
+  const double y = band / servo_level_kip(band, f);  // force ratio
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   double shaped = ts && ts->exponent != 1.0 ? std::copysign(std::pow(std::abs(y), ts->exponent), y) : y;
   if (ts && ts->breakaway_ratio > 0.0 && y * v > 0.0) {  // elasto-plastic loading: no slip below the breakaway ratio
@@ -425,7 +438,13 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const double slow = ts ? ts->slow_share : 0.0;  // transition_shape's slow contact element
   const double band = (1.0 - slow) * spring_force_kip(z) +
                       (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0);
-  return f.tension * band + engaged * p.sigma1_kip_s_per_in * rate_in_frame(z, v, f) +
+  // σ1 of Eq. (3), and transition_shape's micro-damping σ1' e^(−(v/v_d)²) (effects.h)
+  double sigma1 = p.sigma1_kip_s_per_in;
+  if (ts && ts->micro_damping_kip_s_per_in != 0.0) {
+    const double r = v / ts->micro_damping_speed_in_per_s;
+    sigma1 += ts->micro_damping_kip_s_per_in * std::exp(-r * r);
+  }
+  return f.tension * band + (sigma1 != 0.0 ? engaged * sigma1 * rate_in_frame(z, v, f) : 0.0) +
          (engaged + (1.0 - engaged) * slack_viscous) * viscous * vv + f.band_spring_kip;
 }
 
@@ -664,7 +683,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     const double servo0 = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band0), 0.2, 3.0) : 1.0;
     // The shaped law's slope: its largest value between the step's start and the steady state
     // (slope_to_steady_), or, off that grid, the bound over every |y| below max(1, |y0|).
-    double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / (f.g * servo0)) : 1.0;
+    double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / servo_level_kip(band0, f)) : 1.0;
     if (slope < 0.0) {
       slope = alpha >= 1.0 ? alpha * std::pow(std::max(1.0, y0), alpha - 1.0) : alpha * std::pow(0.05, alpha - 1.0);
       // The breakaway's half-sine rises with slope π/(2(y_m − β)) in y.

@@ -156,6 +156,7 @@ class BrfdModel final : public DamperModel {
     double servo = 0.0;    // η / b + χ of self_energizing's band-force feedback, 1/kip
     double servo_share = 0.0;  // η
     bool servo_on = false;     // the self-servo factor φ_s applies
+    double servo_level = 0.0;  // the part of g that φ_s scales (all of g, or Eq. (4)'s Fc part), kip
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
     double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
     double band_spring_kip = 0.0;  // self_energizing's k_b d, kip
@@ -164,6 +165,8 @@ class BrfdModel final : public DamperModel {
     double target_pos = 0.0, target_neg = 0.0;  // z_r for z >= 0 / z < 0, in
   };
   Frame frame(const DamperInput& in) const;
+  /// The level the bristle law sees with the self-servo at this band force: g + (φ_s − 1) × servo_level.
+  double servo_level_kip(double band_kip, const Frame& f) const;
   double rate_in_frame(double z, double v, const Frame& f) const;
   double force_in_frame(double z, double v, const Frame& f) const;
   double stiffness(bool positive_z) const;

@@ -142,7 +142,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection p = s.section("self_energizing");
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
                   "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio",
-                  "servo_backward_ratio", "brake_factor_per_kip", "brake_factor_stiction_share"});
+                  "servo_backward_ratio", "brake_factor_per_kip", "stiction_share",
+                  "brake_factor_stiction_share"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -155,20 +156,25 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_spring_neg_ratio = p.get_double_in("band_spring_neg_ratio", 1.0, 0.0, 10.0);
     x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -1.0, 1.0);
     x.brake_factor_per_kip = p.get_double_in("brake_factor_per_kip", 0.0, -0.5, 0.5);
-    x.brake_factor_stiction_share = p.get_double_in("brake_factor_stiction_share", 1.0, 0.0, 1.0);
+    // stiction_share's name until it moved all three level factors (brake factor only, 91f30d6)
+    const char* share_key = p.has("brake_factor_stiction_share") && !p.has("stiction_share") ? "brake_factor_stiction_share" : "stiction_share";
+    x.stiction_share = p.get_double_in(share_key, 1.0, 0.0, 1.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
     const common::YamlSection t = s.section("transition_shape");
     t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent", "slow_share",
-                  "slow_stiffness_ratio", "breakaway_ramp_share"});
+                  "slow_stiffness_ratio", "breakaway_ramp_share", "micro_damping_kip_s_per_in",
+                  "micro_damping_speed_in_per_s"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
                                                t.get_double_in("dahl_exponent", 1.0, 0.1, 20.0),
                                                t.get_double_in("slow_share", 0.0, 0.0, 0.95),
                                                t.get_double_in("slow_stiffness_ratio", 1.0, 0.001, 100.0),
-                                               t.get_double_in("breakaway_ramp_share", 1.0, 0.01, 1.0)};
+                                               t.get_double_in("breakaway_ramp_share", 1.0, 0.01, 1.0),
+                                               t.get_double_in("micro_damping_kip_s_per_in", 0.0, 0.0, 100.0),
+                                               t.get_double_in("micro_damping_speed_in_per_s", 0.5, 1e-3, 1e3)};
   }
   return e;
 }
@@ -461,7 +467,8 @@ std::vector<EffectSpec> build_library() {
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1) + chi |N S(z)|, 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
       "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start; "
-      "brake factor: g / max(1 - lambda g, 0.25) for v >= 0, rho_s lambda for v < 0 (w = 1; w = 0: on Fc of Eq. (4) only, Fs kept)",
+      "brake factor: g / max(1 - lambda g, 0.25) for v >= 0, rho_s lambda for v < 0; "
+      "each level factor on g (stiction_share w = 1) or on Fc of Eq. (4) only, Fs kept (w = 0)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
@@ -473,7 +480,7 @@ std::vector<EffectSpec> build_library() {
        {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true},
        {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false},
        {"brake_factor_per_kip", -0.12, 0.12, 0.0, 0.03, false},
-       {"brake_factor_stiction_share", 0.0, 1.0, 1.0, 1.0, false, true}},
+       {"stiction_share", 0.0, 1.0, 1.0, 1.0, false, true}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -488,14 +495,14 @@ std::vector<EffectSpec> build_library() {
         p.band_spring_neg_ratio = t[8];
         p.servo_backward_ratio = t[9];
         p.brake_factor_per_kip = t[10];
-        p.brake_factor_stiction_share = t[11];
+        p.stiction_share = t[11];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
                                    p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
                                    p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio,
-                                   p.brake_factor_per_kip, p.brake_factor_stiction_share};
+                                   p.brake_factor_per_kip, p.stiction_share};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -510,15 +517,17 @@ std::vector<EffectSpec> build_library() {
        {"dahl_exponent", 0.3, 4.0, 1.0, 2.0, true},
        {"slow_share", 0.0, 0.9, 0.0, 0.5, false},
        {"slow_stiffness_ratio", 0.03, 1.0, 1.0, 0.2, true},
-       {"breakaway_ramp_share", 0.05, 1.0, 1.0, 0.45, true}},
+       {"breakaway_ramp_share", 0.05, 1.0, 1.0, 0.45, true},
+       {"micro_damping_kip_s_per_in", 0.0, 8.0, 0.0, 2.0, false},
+       {"micro_damping_speed_in_per_s", 0.05, 5.0, 0.5, 0.5, true}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
-        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
                                    a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio,
-                                   a.breakaway_ramp_share};
+                                   a.breakaway_ramp_share, a.micro_damping_kip_s_per_in, a.micro_damping_speed_in_per_s};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -579,15 +588,20 @@ std::vector<EffectSpec> build_library() {
   // levels on the fitting record and transferred badly: docs/diagnose.md, eighth session).
   mech("self_energizing", {{"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share=1"},
                            {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent"},
+                           // ... on Eq. (4)'s kinetic level only (Fs kept), from the start and from zero
+                           {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share=1", "stiction_share=0"},
+                           {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "stiction_share=0"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
                            {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
+                           {"band_force_per_kip", "servo_backward_ratio", "stiction_share=0"},  // per kip by direction, on Fc only
                            {"brake_factor_per_kip", "servo_backward_ratio"},  // leading/trailing brake factor by the level
-                           {"brake_factor_per_kip", "servo_backward_ratio", "brake_factor_stiction_share=0"},  // on Eq. (4)'s Fc only
+                           {"brake_factor_per_kip", "servo_backward_ratio", "stiction_share=0"},  // on Eq. (4)'s Fc only
                            {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},
                            {"band_spring_kip_per_in", "band_spring_neg_ratio"}});
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
                             {"elastic_unloading", "breakaway_ratio", "breakaway_ramp_share"},  // elasto-plastic pre-sliding
-                            {"slow_share", "slow_stiffness_ratio"}});       // two-stage contact
+                            {"slow_share", "slow_stiffness_ratio"},         // two-stage contact
+                            {"micro_damping_kip_s_per_in", "micro_damping_speed_in_per_s"}});  // fading micro-damping
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

@@ -264,10 +264,16 @@
 ///    for v < 0 (ρ_s = −1: the trailing band de-energized). In steady sliding it equals χ = λ; it
 ///    differs where the band force lags the level: after a reversal, at the stiction peak, while
 ///    the actuators change the clamping (the χ servo follows |N S(z)|, this one g(v) at once).
-///    Where it acts (brake_factor_stiction_share = w): on the whole level g(v), stiction peak
-///    included (w = 1, two of the three authors), or on Eq. (4)'s kinetic level only,
-///    g = Fc' + (Fs − Fc') e^(−(v/vs)²) with Fc' = Fc/(1 − λ Fc) (w = 0: the clamping's own level,
-///    Fs kept as Eq. (5) keeps it under the actuators; the third author). g = w g_1 + (1 − w) g_0.
+///    Where the level factors act (stiction_share = w, for the rotation terms, the self-servo and
+///    the brake factor alike): on the whole level g(v), stiction peak included (w = 1, the default),
+///    or on Eq. (4)'s kinetic level only, Fs kept as Eq. (5) keeps it under the actuators (w = 0:
+///    the clamping's own level). Several outside authors write their level laws on Fc alone: set 24
+///    t03 (brake factor), set 27 t16 (capstan wrap by the drum position), set 27 t29 (capstan servo by
+///    the band force); the rotation factor φ_r = 1 + κ d + μ |d|^p on Fc alone replays t16's records
+///    at the noise floor, on both levels it is worse than the base model. With w = 0:
+///      rotation: Fc × φ_r, Fs × (1 − w + w φ_r);
+///      brake factor: g = Fc' + (Fs − Fc') e^(−(v/vs)²), Fc' = Fc/(1 − λ Fc); g = w g_1 + (1 − w) g_0;
+///      self-servo: g ← g + (w g + (1 − w) Fc (1 − e^(−(v/vs)²))) (φ_s − 1), the part of g it scales.
 ///    η, χ ≠ 0 make the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
 ///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
 ///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
@@ -304,6 +310,13 @@
 ///    (n added 2026-11-26: three outside authors wrote Dahl's model in this form, (1 − r)^n, which α
 ///    (1 − r^α) does not reach.)
 ///    Steady sliding is unchanged (|y| = 1, y v > 0). Stepped by RK4 sub-steps (the ODE is no longer linear).
+///    Micro-damping that fades with the speed (micro_damping_kip_s_per_in = σ1',
+///    micro_damping_speed_in_per_s = v_d; added 2026-11-27 after blind set 27 t06): LuGre's σ1 term
+///    with the speed dependence Canudas de Wit, Olsson, Åström & Lischinsky (1995, IEEE TAC 40) give
+///    to keep the model passive and damped at stick yet undamped in sliding:
+///      F += σ1' e^(−(v/v_d)²) dz/dt
+///    (on top of the base σ1, which fits to about 0 on the BRFD's tests). dz/dt = 0 in steady sliding:
+///    it acts in the transitions, after reversals and at stick-slip (tested in closed form).
 ///    A second, slower contact element (slow_share = φ, slow_stiffness_ratio = k2; the two-element
 ///    generalized Maxwell-slip model, Lampaert, Al-Bender & Swevers 2003; Al-Bender et al. 2005: asperity
 ///    junctions of different stiffness share the load): the band force is (1 − φ) of the one above plus
@@ -509,9 +522,11 @@ struct SelfEnergizingEffect {
   /// λ: the leading/trailing brake factor per kip of friction level, 1/kip: g ← g / (1 − λ g) moving
   /// forward, g / (1 − ρ_s λ g) backward (the steady-state form of the self-servo; see file comment)
   double brake_factor_per_kip = 0.0;
-  /// w in [0, 1]: the brake factor acts on the whole level g(v) (1) or on the kinetic level Fc of
-  /// Eq. (4) only, the stiction level Fs kept as Eq. (5) keeps it (0); a share between blends the two
-  double brake_factor_stiction_share = 1.0;
+  /// w in [0, 1]: where the level factors (rotation terms κ, μ; self-servo η, χ; brake factor λ) act:
+  /// on both levels, the whole g(v) (1), or on the kinetic level Fc of Eq. (4) only, the stiction
+  /// level Fs kept as Eq. (5) keeps it (0); a share between blends the two. (YAML also reads it as
+  /// brake_factor_stiction_share, its name on 2026-11-27 when it moved the brake factor only.)
+  double stiction_share = 1.0;
 };
 
 /// Shape of the stick-to-slip transition (see file comment).
@@ -523,6 +538,10 @@ struct TransitionShapeEffect {
   double slow_share = 0.0;         ///< φ in [0, 0.9): share of the friction carried by a second, slower contact element
   double slow_stiffness_ratio = 1.0;  ///< k2 > 0: that element's stiffness / σ0 (its transition is 1/k2 times longer)
   double breakaway_ramp_share = 1.0;  ///< w in (0, 1]: slip sets in between β and β + w (1 − β) (Dupont's z_max; 1: at sliding)
+  /// σ1': micro-damping of the bristle rate that fades with the speed, F += σ1' e^(−(v/v_d)²) dz/dt
+  /// (Canudas de Wit et al. 1995), kip s/in; 0: none
+  double micro_damping_kip_s_per_in = 0.0;
+  double micro_damping_speed_in_per_s = 0.5;  ///< v_d: the speed over which σ1' fades, in/s
   /// The force ratio at which the elasto-plastic slip gate reaches 1 (Dupont et al. 2002's z_max/z_ss).
   double breakaway_full_slip_ratio() const { return breakaway_ratio + breakaway_ramp_share * (1.0 - breakaway_ratio); }
   bool nonlinear() const {

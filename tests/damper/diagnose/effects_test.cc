@@ -397,6 +397,33 @@ TEST(Effects, DahlExponentFollowsDahlsClosedForm) {
   }
 }
 
+// transition_shape's micro-damping that fades with the speed (Canudas de Wit et al. 1995):
+// F += σ1' e^(−(v/v_d)²) dz/dt. From F = 0 at a constant speed v, Coulomb band (Fs = Fc, σ1 = σ2 = 0):
+// z = (Fc/σ0)(1 − e^(−σ0 v t/Fc)), dz/dt = v e^(−σ0 v t/Fc), so F = Fc (1 − e) + σ1' e^(−(v/v_d)²) v e;
+// nothing in steady sliding. At v = v_d the damping is e^(−1) of σ1', at 3 v_d e^(−9).
+TEST(Effects, MicroDampingFadesWithTheSpeedAndVanishesInSteadySliding) {
+  BrfdParams p = coulomb_band();
+  const double fc = p.lugre.fc_fwd_kip, s0 = p.lugre.sigma0_kip_per_in, s1 = 3.0, vd = 0.4, dt = 1e-4;
+  p.effects.transition_shape = TransitionShapeEffect{};
+  p.effects.transition_shape->micro_damping_kip_s_per_in = s1;
+  p.effects.transition_shape->micro_damping_speed_in_per_s = vd;
+  for (const double v : {0.5 * vd, vd, 3.0 * vd}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double worst = 0.0, f = 0.0;
+    const int steps = static_cast<int>(std::round(8.0 * fc / (s0 * v) / dt));
+    for (int i = 1; i <= steps; ++i) {
+      in.drum_disp_in += v * dt;
+      f = m.step(in, dt);
+      const double e = std::exp(-s0 * v * i * dt / fc);
+      worst = std::max(worst, std::abs(f - (fc * (1.0 - e) + s1 * std::exp(-(v / vd) * (v / vd)) * v * e)));
+    }
+    EXPECT_LT(worst, 1e-6 * fc) << "v " << v;
+    EXPECT_NEAR(f, fc, 2e-3 * fc) << "steady sliding: Fc, no damping force";
+  }
+}
+
 // asymmetry's motion_stiffness a_m, with σ1 = σ2 = 0 and Fs = Fc: from F = 0 the force rises as
 // Fc (1 − exp(−σ0 (1 ± a_m) x/Fc)), forward + and backward −, to the same sliding level.
 TEST(Effects, BandStiffnessByDirectionOfMotionFollowsItsClosedForm) {
@@ -1171,6 +1198,45 @@ TEST(Effects, AbsoluteSelfServoGainPerKipByDirection) {
   }
 }
 
+// self_energizing's level factors on both levels (stiction_share w = 1, the default) or on Eq. (4)'s
+// kinetic level only (w = 0, Fs kept, as outside authors' capstan wrap with the drum position, blind
+// set 27 t16, and capstan servo by the band force, t29). Steady state at v = v_s, Fs = 1.8 Fc,
+// σ1 = σ2 = 0, so g = Fc + (Fs − Fc) e^(−1):
+//  - rotation terms at a held drum position d (from zero): F = Fc φ + (Fs (1 − w + w φ) − Fc φ) e^(−1),
+//    φ = 1 + κ d;
+//  - self-servo χ: F = g + χ F L, L = w g + (1 − w) Fc (1 − e^(−1)) the part it scales, F = g/(1 − χ L).
+TEST(Effects, LevelFactorsActOnBothLevelsOrOnTheKineticLevelOnly) {
+  BrfdParams p = coulomb_band();
+  p.lugre.fs_fwd_kip = 1.8 * p.lugre.fc_fwd_kip;
+  const double kappa = 0.3, d = 0.5, fc = p.lugre.fc_fwd_kip, fs = p.lugre.fs_fwd_kip, phi = 1.0 + kappa * d;
+  for (const double w : {1.0, 0.0, 0.5}) {
+    p.effects.self_energizing = SelfEnergizingEffect{};
+    p.effects.self_energizing->drum_fwd_per_in = kappa;
+    p.effects.self_energizing->stiction_share = w;
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_disp_in = d;  // held: the levels at this rotation (the velocity drives the bristle only)
+    in.drum_vel_in_per_s = p.lugre.vs_in_per_s;
+    double f = 0.0;
+    for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);
+    const double exact = fc * phi + (fs * (1.0 - w + w * phi) - fc * phi) * std::exp(-1.0);
+    EXPECT_NEAR(f, exact, 1e-6 * exact) << "rotation, w " << w;
+  }
+  const double chi = 0.08, g = fc + (fs - fc) * std::exp(-1.0);
+  for (const double w : {1.0, 0.0, 0.5}) {
+    p.effects.self_energizing = SelfEnergizingEffect{};
+    p.effects.self_energizing->band_force_per_kip = chi;
+    p.effects.self_energizing->stiction_share = w;
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = p.lugre.vs_in_per_s;
+    double f = 0.0;
+    for (int i = 0; i < 400000; ++i) f = m.step(in, 1e-4);  // the servo slows the approach: 40 s
+    const double exact = g / (1.0 - chi * (w * g + (1.0 - w) * fc * (1.0 - std::exp(-1.0))));
+    EXPECT_NEAR(f, exact, 1e-6 * exact) << "self-servo, w " << w;
+  }
+}
+
 // velocity's flash temperature by the load (flash_load_per_kip = c, flash_speed_exponent = n_T):
 // Archard's flash temperature rise follows the heat flux μ p v^n_T, so the levels × (1 − c Fc |v|^n_T)
 // with Fc each direction's kinetic level. Closed form in steady sliding, Coulomb band (σ1 = σ2 = 0)
@@ -1246,7 +1312,7 @@ TEST(Effects, BrakeFactorByTheFrictionLevelAndDirection) {
     const double lambda = 0.06;
     p.effects.self_energizing = SelfEnergizingEffect{};
     p.effects.self_energizing->brake_factor_per_kip = lambda;
-    p.effects.self_energizing->brake_factor_stiction_share = w;
+    p.effects.self_energizing->stiction_share = w;
     const double fc = p.lugre.fc_fwd_kip, fs = p.lugre.fs_fwd_kip, shape = std::exp(-1.0);
     const double g = fc + (fs - fc) * shape;
     const double fc_kinetic = fc / (1.0 - lambda * fc);
