@@ -157,7 +157,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -1.0, 1.0);
     x.brake_factor_per_kip = p.get_double_in("brake_factor_per_kip", 0.0, -0.5, 0.5);
     // stiction_share's name until it moved all three level factors (brake factor only, 91f30d6)
-    const char* share_key = p.has("brake_factor_stiction_share") && !p.has("stiction_share") ? "brake_factor_stiction_share" : "stiction_share";
+    if (p.has("brake_factor_stiction_share") && p.has("stiction_share"))
+      p.fail("brake_factor_stiction_share", "is stiction_share's old name: give one of the two");
+    const char* share_key = p.has("brake_factor_stiction_share") ? "brake_factor_stiction_share" : "stiction_share";
     x.stiction_share = p.get_double_in(share_key, 1.0, 0.0, 1.0);
     e.self_energizing = x;
   }

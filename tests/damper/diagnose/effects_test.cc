@@ -1832,6 +1832,18 @@ TEST(Effects, ConfigBlockRoundTrips) {
   EXPECT_THROW(load_brfd_params(dir + "/bad2.yaml"), common::ConfigError);
   std::ofstream(dir + "/bad3.yaml") << base_yaml << "effects:\n  pretension:\n    instant_share: 1.5\n";
   EXPECT_THROW(load_brfd_params(dir + "/bad3.yaml"), common::ConfigError);
+  // self_energizing's stiction_share under its old name (brake factor only, 91f30d6) still reads;
+  // both names at once is an error naming the key.
+  std::ofstream(dir + "/old_share.yaml") << base_yaml << "effects:\n  self_energizing:\n    brake_factor_stiction_share: 0.25\n";
+  EXPECT_EQ(load_brfd_params(dir + "/old_share.yaml").effects.self_energizing->stiction_share, 0.25);
+  std::ofstream(dir + "/both_shares.yaml")
+      << base_yaml << "effects:\n  self_energizing:\n    brake_factor_stiction_share: 0.25\n    stiction_share: 0.5\n";
+  try {
+    load_brfd_params(dir + "/both_shares.yaml");
+    ADD_FAILURE() << "both names of the share accepted";
+  } catch (const common::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("brake_factor_stiction_share"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
