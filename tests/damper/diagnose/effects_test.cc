@@ -1209,31 +1209,31 @@ TEST(Effects, LevelFactorsActOnBothLevelsOrOnTheKineticLevelOnly) {
   BrfdParams p = coulomb_band();
   p.lugre.fs_fwd_kip = 1.8 * p.lugre.fc_fwd_kip;
   const double kappa = 0.3, d = 0.5, fc = p.lugre.fc_fwd_kip, fs = p.lugre.fs_fwd_kip, phi = 1.0 + kappa * d;
-  for (const double w : {1.0, 0.0, 0.5}) {
-    p.effects.self_energizing = SelfEnergizingEffect{};
-    p.effects.self_energizing->drum_fwd_per_in = kappa;
-    p.effects.self_energizing->stiction_share = w;
-    BrfdModel m(p);
+  // The force after `steps` of 0.1 ms at v = v_s, the drum held at d (the velocity drives the bristle only).
+  auto held_force = [&p](const SelfEnergizingEffect& se, double d_in, int steps) {
+    BrfdParams q = p;
+    q.effects.self_energizing = se;
+    BrfdModel m(q);
     DamperInput in;
-    in.drum_disp_in = d;  // held: the levels at this rotation (the velocity drives the bristle only)
-    in.drum_vel_in_per_s = p.lugre.vs_in_per_s;
+    in.drum_disp_in = d_in;
+    in.drum_vel_in_per_s = q.lugre.vs_in_per_s;
     double f = 0.0;
-    for (int i = 0; i < 40000; ++i) f = m.step(in, 1e-4);
-    const double exact = fc * phi + (fs * (1.0 - w + w * phi) - fc * phi) * std::exp(-1.0);
-    EXPECT_NEAR(f, exact, 1e-6 * exact) << "rotation, w " << w;
-  }
+    for (int i = 0; i < steps; ++i) f = m.step(in, 1e-4);
+    return f;
+  };
   const double chi = 0.08, g = fc + (fs - fc) * std::exp(-1.0);
   for (const double w : {1.0, 0.0, 0.5}) {
-    p.effects.self_energizing = SelfEnergizingEffect{};
-    p.effects.self_energizing->band_force_per_kip = chi;
-    p.effects.self_energizing->stiction_share = w;
-    BrfdModel m(p);
-    DamperInput in;
-    in.drum_vel_in_per_s = p.lugre.vs_in_per_s;
-    double f = 0.0;
-    for (int i = 0; i < 400000; ++i) f = m.step(in, 1e-4);  // the servo slows the approach: 40 s
-    const double exact = g / (1.0 - chi * (w * g + (1.0 - w) * fc * (1.0 - std::exp(-1.0))));
-    EXPECT_NEAR(f, exact, 1e-6 * exact) << "self-servo, w " << w;
+    SelfEnergizingEffect rotation;
+    rotation.drum_fwd_per_in = kappa;
+    rotation.stiction_share = w;
+    const double exact = fc * phi + (fs * (1.0 - w + w * phi) - fc * phi) * std::exp(-1.0);
+    EXPECT_NEAR(held_force(rotation, d, 40000), exact, 1e-6 * exact) << "rotation, w " << w;
+    SelfEnergizingEffect servo;
+    servo.band_force_per_kip = chi;
+    servo.stiction_share = w;
+    const double servo_exact = g / (1.0 - chi * (w * g + (1.0 - w) * fc * (1.0 - std::exp(-1.0))));
+    // the servo slows the approach: 40 s
+    EXPECT_NEAR(held_force(servo, 0.0, 400000), servo_exact, 1e-6 * servo_exact) << "self-servo, w " << w;
   }
 }
 
