@@ -303,27 +303,27 @@ std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
 std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
-    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
     c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
     return c;
   }
-  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
   // A slack band whose lining stays on the drum: the viscous force goes on through the slack.
-  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
-  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
+  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
   // The grip lost at a reversal (half of it) and taken up over 0.08 in of travel, no slack.
-  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
+  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
   // Drive-line play of 2 x 0.05 in, the band unloading over it (e^(-20 s)).
-  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0}));
+  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
   // The grip lost at a reversal in proportion to the stroke before it, up to 1.5 in (band stretch
   // stored over the stroke), the band force scaled with it.
-  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0}));
+  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0}));
   // An impact ring at each re-engagement: 0.3 kip, 8 Hz, decaying in 0.1 s, a quarter of it in phase
   // with the reversal's force step.
-  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0}));
+  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0, 0.0}));
   c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
@@ -384,22 +384,24 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // The two actuators' clamping not additive: ΔFc += c u1 u2 (with the drives' two-actuator pulses,
   // 0.015-0.02 in, about 1.5-2.4 kip at their peak).
   c.push_back(library_case("pretension", "coupling", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 6000.0}));
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0}));  // band-force feedback only
-  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0}));   // strong wrap: ~ capstan e^(±κd)
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));  // band-force feedback only
+  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));   // strong wrap: ~ capstan e^(±κd)
   // Self-servo per kip of band force, the same gain both ways: g (1 + 0.06 |F|).
-  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0}));
-  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0}));  // band-stretch spring in parallel
+  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));  // band-stretch spring in parallel
   // Each band's own spring: the one stretched backward at 0.3 of the forward one's rate. (The bench
   // records start at the drum's zero, as the measured tests do, so drum_start_share is not judged here.)
-  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3, 1.0, 0.0, 1.0}));
+  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
   // A leading/trailing self-servo: +0.06 per kip of band force moving forward, −0.06 backward.
-  c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0, 0.0, 1.0}));
+  c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
   // The leading/trailing brake factor by the level on Eq. (4)'s Fc only: Fc/(1 ∓ 0.05 Fc), Fs kept.
-  c.push_back(library_case("self_energizing", "brake_factor", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.05, 0.0}));
+  c.push_back(library_case("self_energizing", "brake_factor", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.05, 0.0, 0.0, 0.0, 0.3}));
   // A capstan wrap by the drum position on Eq. (4)'s Fc only, from the start (Fs kept: stiction_share 0).
-  c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.3}));
+  // The wrap built up over each stroke since the reversal, backward only, on Fc only: Fc (1 + 0.5 (1 − e^(−s/0.4 in))).
+  c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4}));
   c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));  // a rounder transition than LuGre

@@ -91,6 +91,7 @@ void BrfdModel::reset() {
   ring_time_s_ = -1.0;
   ring_sign_ = 0.0;
   reversal_time_s_ = -1.0;
+  impact_pending_ = false;
   reversal_force_kip_ = last_force_kip_ = 0.0;
   rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
@@ -232,6 +233,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double ad = std::abs(d);
     const double grow = e.self_energizing->abs_exponent == 1.0 ? ad : std::pow(ad, e.self_energizing->abs_exponent);
     rotation = std::max(0.05, 1.0 + kappa * d + e.self_energizing->drum_abs_per_in * grow);
+    // the wrap built up over the stroke since the last reversal (effects.h)
+    const double k_wrap = forward ? e.self_energizing->stroke_wrap_fwd : e.self_energizing->stroke_wrap_bwd;
+    if (k_wrap != 0.0)
+      rotation *= std::max(0.05, 1.0 + k_wrap * (1.0 - std::exp(-stroke_travel_in_ / e.self_energizing->stroke_wrap_length_in)));
   }
   if (e.asymmetry)  // each band its level difference: constant, its own speed law, its own fade (effects.h)
     factor *= e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
@@ -477,7 +482,8 @@ double BrfdModel::step(const DamperInput& in, double dt_s) {
 double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   double force = step_states_with_effects(in, dt_s);
   last_force_kip_ = force;
-  // backlash's impact ring after the last reversal (effects.h), from the step the reversal was seen.
+  // backlash's impact ring after the last reversal (effects.h), from the step the drum has travelled
+  // impact_travel_in past it (the clearance closed; 0: the step the reversal was seen).
   const BacklashEffect* bl = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
   if (bl && bl->impact_rings() && reversal_time_s_ >= 0.0) {
     const double t = reversal_time_s_ - dt_s, phase = 2.0 * M_PI * bl->impact_frequency_hz * t;
@@ -606,21 +612,28 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   }
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
-  if (e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings())) {
-    // backlash's take-up and impact ring: a reversal is the speed passing the threshold against the last direction.
+  const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
+  if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings())) || stroke_wrap) {
+    // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the speed
+    // passing the threshold against the last direction.
     const int direction = v >= BacklashEffect::kReversalSpeedInPerS ? 1 : v <= -BacklashEffect::kReversalSpeedInPerS ? -1 : 0;
     if (direction != 0 && direction != last_direction_) {
       if (last_direction_ != 0) {
         reversal_travel_in_ = 0.0;
         previous_stroke_in_ = stroke_travel_in_;
         stroke_travel_in_ = 0.0;
-        reversal_time_s_ = 0.0;
+        reversal_time_s_ = -1.0;  // the ring waits for the clearance to close (impact_travel_in)
+        impact_pending_ = true;
         reversal_force_kip_ = last_force_kip_;
       }
       last_direction_ = direction;
     }
     reversal_travel_in_ = std::min(reversal_travel_in_ + speed * dt_s, kEngagedTravelIn);
     stroke_travel_in_ += speed * dt_s;
+    if (impact_pending_ && e.backlash && reversal_travel_in_ >= e.backlash->impact_travel_in) {  // the clearance closes: the strike
+      impact_pending_ = false;
+      reversal_time_s_ = 0.0;
+    }
     if (reversal_time_s_ >= 0.0) reversal_time_s_ += dt_s;
   }
   if (e.residual_static) {

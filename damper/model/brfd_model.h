@@ -191,6 +191,7 @@ class BrfdModel final : public DamperModel {
   double ring_time_s_ = -1.0;             ///< t_s of residual_static's ring-down: time since the drum stopped (< 0: moving), s
   double ring_sign_ = 0.0;                ///< sign(F_stop) of the ring-down
   double reversal_time_s_ = -1.0;         ///< t of backlash's impact ring: time since the last reversal (< 0: none yet), s
+  bool impact_pending_ = false;           ///< a reversal seen, the impact ring not yet started (clearance open)
   double reversal_force_kip_ = 0.0;       ///< F_rev of the impact ring: the force just before the last reversal, kip
   double last_force_kip_ = 0.0;           ///< the friction force of the last step (without the rings), kip
   double rest_rate_per_s_ = -1.0;         ///< residual_static's rate over the current step (< 0: w/τ_r)

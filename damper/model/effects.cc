@@ -27,7 +27,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
                   "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
-                  "impact_force_share"});
+                  "impact_force_share", "impact_travel_in"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -44,6 +44,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.impact_frequency_hz = b.get_double_in("impact_frequency_hz", 5.0, 1e-3, 1e3);
     x.impact_decay_s = b.get_double_in("impact_decay_s", 0.15, 1e-4, 1e4);
     x.impact_force_share = b.get_double_in("impact_force_share", 0.0, 0.0, 1.0);
+    x.impact_travel_in = b.get_double_in("impact_travel_in", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
@@ -143,7 +144,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
                   "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio",
                   "servo_backward_ratio", "brake_factor_per_kip", "stiction_share",
-                  "brake_factor_stiction_share"});
+                  "brake_factor_stiction_share", "stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -161,6 +162,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
       p.fail("brake_factor_stiction_share", "is stiction_share's old name: give one of the two");
     const char* share_key = p.has("brake_factor_stiction_share") ? "brake_factor_stiction_share" : "stiction_share";
     x.stiction_share = p.get_double_in(share_key, 1.0, 0.0, 1.0);
+    x.stroke_wrap_fwd = p.get_double_in("stroke_wrap_fwd", 0.0, -0.95, 10.0);
+    x.stroke_wrap_bwd = p.get_double_in("stroke_wrap_bwd", 0.0, -0.95, 10.0);
+    x.stroke_wrap_length_in = p.get_double_in("stroke_wrap_length_in", 0.3, 1e-3, 1e3);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -237,7 +241,7 @@ std::vector<EffectSpec> build_library() {
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel); impact ring: F += d exp(-t/tau_i) (A_s sin 2 pi f_i t + A_c cos 2 pi f_i t), "
-      "x ((1 - h_i) + h_i |F_rev|/1 kip), t since the reversal into direction d, F_rev the force before it",
+      "x ((1 - h_i) + h_i |F_rev|/1 kip), t since the drum travelled impact_travel_in past the reversal into direction d, F_rev the force before it",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
@@ -250,11 +254,12 @@ std::vector<EffectSpec> build_library() {
        {"play_release_per_in", 0.0, 60.0, 0.0, 10.0, false, true},
        {"takeup_forward_share", 0.0, 1.0, 0.5, 0.5, false, true},
        {"takeup_stroke_in", 0.0, 3.0, 0.0, 1.0, false},
-       {"impact_sin_kip", -2.0, 2.0, 0.0, 0.2, false},
-       {"impact_cos_kip", -2.0, 2.0, 0.0, 0.2, false},
+       {"impact_sin_kip", -5.0, 5.0, 0.0, 0.2, false},
+       {"impact_cos_kip", -5.0, 5.0, 0.0, 0.2, false},
        {"impact_frequency_hz", 1.0, 20.0, 5.0, 5.0, true},
        {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true},
-       {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true}},
+       {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
+       {"impact_travel_in", 0.0, 0.05, 0.0, 0.005, false}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -275,6 +280,7 @@ std::vector<EffectSpec> build_library() {
         b.impact_frequency_hz = t[14];
         b.impact_decay_s = t[15];
         b.impact_force_share = t[16];
+        b.impact_travel_in = t[17];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -282,7 +288,7 @@ std::vector<EffectSpec> build_library() {
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
-                                   b.impact_decay_s, b.impact_force_share};
+                                   b.impact_decay_s, b.impact_force_share, b.impact_travel_in};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -470,6 +476,7 @@ std::vector<EffectSpec> build_library() {
       "Fc, Fs x (1 + kappa_dir d + mu |d|^p) x clamp(1 + eta (|N S(z)|/b - 1) + chi |N S(z)|, 0.2, 3), kappa_fwd for v >= 0, kappa_bwd for v < 0; "
       "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start; "
       "brake factor: g / max(1 - lambda g, 0.25) for v >= 0, rho_s lambda for v < 0; "
+      "stroke wrap: x (1 + k_dir (1 - exp(-s/lambda_w))), s the drum travel since the last reversal; "
       "each level factor on g (stiction_share w = 1) or on Fc of Eq. (4) only, Fs kept (w = 0)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
@@ -482,7 +489,10 @@ std::vector<EffectSpec> build_library() {
        {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true},
        {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false},
        {"brake_factor_per_kip", -0.12, 0.12, 0.0, 0.03, false},
-       {"stiction_share", 0.0, 1.0, 1.0, 1.0, false, true}},
+       {"stiction_share", 0.0, 1.0, 1.0, 1.0, false, true},
+       {"stroke_wrap_fwd", -0.8, 2.0, 0.0, 0.2, false},
+       {"stroke_wrap_bwd", -0.8, 2.0, 0.0, 0.2, false},
+       {"stroke_wrap_length_in", 0.05, 3.0, 0.3, 0.3, true}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -498,13 +508,17 @@ std::vector<EffectSpec> build_library() {
         p.servo_backward_ratio = t[9];
         p.brake_factor_per_kip = t[10];
         p.stiction_share = t[11];
+        p.stroke_wrap_fwd = t[12];
+        p.stroke_wrap_bwd = t[13];
+        p.stroke_wrap_length_in = t[14];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
         return std::vector<double>{p.drum_fwd_per_in, p.drum_bwd_per_in, p.drum_abs_per_in, p.abs_exponent,
                                    p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
                                    p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio,
-                                   p.brake_factor_per_kip, p.stiction_share};
+                                   p.brake_factor_per_kip, p.stiction_share,
+                                   p.stroke_wrap_fwd, p.stroke_wrap_bwd, p.stroke_wrap_length_in};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -555,7 +569,7 @@ std::vector<EffectSpec> build_library() {
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
-                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share"},  // impact ring
+                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share", "impact_travel_in"},  // impact ring
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)
@@ -593,6 +607,9 @@ std::vector<EffectSpec> build_library() {
                            // ... on Eq. (4)'s kinetic level only (Fs kept), from the start and from zero
                            {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "drum_start_share=1", "stiction_share=0"},
                            {"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "stiction_share=0"},
+                           // the wrap built up over each stroke since the reversal, on g and on Fc only
+                           {"stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in"},
+                           {"stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in", "stiction_share=0"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
                            {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
                            {"band_force_per_kip", "servo_backward_ratio", "stiction_share=0"},  // per kip by direction, on Fc only

@@ -56,7 +56,12 @@
 ///    (an impulse, a force step). It adds to the force and leaves the bristle state. The energy that
 ///    strikes grows with the band force released at the reversal (impact_force_share = h_i): the
 ///    amplitudes × ((1 − h_i) + h_i |F_rev|/1 kip), F_rev the force just before the reversal (an
-///    outside author's impact pair, blind set 24 t12, rang in proportion to it).
+///    outside author's impact pair, blind set 24 t12, rang in proportion to it). Where it strikes
+///    (impact_travel_in = δ_i, added in the seventeenth session): the ring starts when the drum has
+///    travelled δ_i past the reversal, the clearance closed (t counts from there). At 8 Hz a strike
+///    20 ms after the reversal is 60° of phase, and the delay from the reversal to a given travel
+///    changes with the drum's deceleration from stroke to stroke: a fixed phase (A_s, A_c) cannot
+///    carry it (blind sets 25 t28 and 28 t27 rang from the clearance's closure and were missed).
 ///    Drive-line play (play_in = δ_p, play_release_per_in = κ_r; added in the seventh session: three
 ///    outside authors wrote backlash as play between the actuator and the drum, sets 12 and 13): the
 ///    band sees the drum through a backlash operator of half-width δ_p (Tao & Kokotović 1996; Nordin
@@ -274,6 +279,13 @@
 ///      rotation: Fc × φ_r, Fs × (1 − w + w φ_r);
 ///      brake factor: g = Fc' + (Fs − Fc') e^(−(v/vs)²), Fc' = Fc/(1 − λ Fc); g = w g_1 + (1 − w) g_0;
 ///      self-servo: g ← g + (w g + (1 − w) Fc (1 − e^(−(v/vs)²))) (φ_s − 1), the part of g it scales.
+///    The wrap built up over each stroke (stroke_wrap_fwd = k_f, stroke_wrap_bwd = k_b,
+///    stroke_wrap_length_in = λ_w; added in the seventeenth session after two outside authors' progressive
+///    wrap, set 26 t03 on g and set 28 t23 on Fc in one direction): the band wraps tighter as the drum
+///    turns within a stroke and lets go at the reversal, the levels × (1 + k_dir (1 − e^(−s/λ_w))), s the
+///    drum travel since the last reversal (since the start of the run before the first); on Fc, and on
+///    Fs by the share w as the rotation terms. (The rotation terms count d from the start or from zero
+///    and do not restart at a reversal.)
 ///    η, χ ≠ 0 make the bristle ODE nonlinear: stepped by RK4 sub-steps. And the elastic force of the
 ///    bands stretched by the rotation (band_spring_kip_per_in = k_b; stored as the drum turns and given
 ///    back as it returns, in parallel with the friction): F += k_b d (added 2026-11-26 after an outside
@@ -368,6 +380,9 @@ struct BacklashEffect {
   /// h_i in [0, 1]: the ring's amplitudes scale as (1 − h_i) + h_i |F_rev|/(1 kip), F_rev the band
   /// force just before the reversal (0: a set amplitude; 1: in proportion to the force released).
   double impact_force_share = 0.0;
+  /// δ_i: the ring starts when the drum has travelled δ_i past the reversal (the clearance closes), in;
+  /// 0: at the reversal
+  double impact_travel_in = 0.0;
   bool impact_rings() const { return impact_sin_kip != 0.0 || impact_cos_kip != 0.0; }
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
@@ -527,6 +542,11 @@ struct SelfEnergizingEffect {
   /// level Fs kept as Eq. (5) keeps it (0); a share between blends the two. (YAML also reads it as
   /// brake_factor_stiction_share, its name on 2026-11-27 when it moved the brake factor only.)
   double stiction_share = 1.0;
+  /// k_f, k_b: the wrap built up over a stroke, the levels × (1 + k_dir (1 − e^(−s/λ_w))), s the drum
+  /// travel since the last reversal (since the start before the first), k_f moving forward, k_b backward
+  double stroke_wrap_fwd = 0.0;
+  double stroke_wrap_bwd = 0.0;
+  double stroke_wrap_length_in = 0.3;  ///< λ_w: the travel over which the stroke's wrap builds up, in
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

@@ -1237,6 +1237,53 @@ TEST(Effects, LevelFactorsActOnBothLevelsOrOnTheKineticLevelOnly) {
   }
 }
 
+// self_energizing's stroke wrap: the levels × φ_w = 1 + k_dir (1 − e^(−s/λ_w)), s the drum travel since
+// the last reversal (since the start before the first), on Fc and on Fs by the share w. A stroke of
+// 1 in forward at v = v_s, then 1 in back: the force against an RK4 integration of LuGre's
+// dz/dt = v − |v| σ0 z/g(s), g = Fc φ_w + (Fs (1 − w + w φ_w) − Fc φ_w) e^(−1), σ1 = σ2 = 0,
+// Fs = 1.8 Fc, s restarting at the reversal. Fails with s not restarted, the direction's k ignored
+// or the share ignored.
+TEST(Effects, StrokeWrapBuildsUpOverEachStrokeAndRestartsAtTheReversal) {
+  BrfdParams p = coulomb_band();
+  p.lugre.fs_fwd_kip = 1.8 * p.lugre.fc_fwd_kip;
+  p.lugre.fs_bwd_kip = 1.8 * p.lugre.fc_bwd_kip;
+  const double kf = 0.4, kb = -0.3, lambda = 0.2, vs = p.lugre.vs_in_per_s, s0 = p.lugre.sigma0_kip_per_in, dt = 1e-4;
+  const int steps = static_cast<int>(std::round(1.0 / (vs * dt)));  // 1 in a stroke
+  for (const double w : {1.0, 0.0}) {
+    p.effects.self_energizing = SelfEnergizingEffect{};
+    p.effects.self_energizing->stroke_wrap_fwd = kf;
+    p.effects.self_energizing->stroke_wrap_bwd = kb;
+    p.effects.self_energizing->stroke_wrap_length_in = lambda;
+    p.effects.self_energizing->stiction_share = w;
+    BrfdModel m(p);
+    DamperInput in;
+    double z = 0.0, worst = 0.0, largest = 0.0;
+    for (const double dir : {1.0, -1.0}) {
+      const double v = dir * vs, k = dir > 0 ? kf : kb;
+      const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = dir > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+      auto g = [&](double s) {
+        const double phi = 1.0 + k * (1.0 - std::exp(-s / lambda));
+        return fc * phi + (fs * (1.0 - w + w * phi) - fc * phi) * std::exp(-1.0);
+      };
+      auto rate = [&](double zz, double s) { return v - std::abs(v) * s0 * zz / g(s); };
+      for (int i = 0; i < steps; ++i) {
+        const double s = i * vs * dt, h = vs * dt;  // the stroke's travel at the step's start, and its increment
+        const double k1 = rate(z, s), k2 = rate(z + 0.5 * dt * k1, s + 0.5 * h);
+        const double k3 = rate(z + 0.5 * dt * k2, s + 0.5 * h), k4 = rate(z + dt * k3, s + h);
+        z += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        in.drum_vel_in_per_s = v;
+        in.drum_disp_in += v * dt;
+        const double f = m.step(in, dt);
+        worst = std::max(worst, std::abs(f - s0 * z));
+        largest = std::max(largest, std::abs(s0 * z) - (dir > 0 ? g(0.0) : 0.0));
+      }
+    }
+    // 2e-3 kip: the model holds the level over each 0.1 ms step (its change, k Fc v_s dt/λ_w ≈ 5e-4 kip)
+    EXPECT_LT(worst, 2e-3) << "w " << w;
+    EXPECT_GT(largest, 0.5) << "w " << w;  // the wrap raised the forward level
+  }
+}
+
 // velocity's flash temperature by the load (flash_load_per_kip = c, flash_speed_exponent = n_T):
 // Archard's flash temperature rise follows the heat flux μ p v^n_T, so the levels × (1 − c Fc |v|^n_T)
 // with Fc each direction's kinetic level. Closed form in steady sliding, Coulomb band (σ1 = σ2 = 0)
@@ -1452,14 +1499,17 @@ TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
 // backlash's impact ring: from the step a reversal is seen (the speed passing 0.05 in/s against the
 // last direction), the force is that of the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t +
 // A_c cos 2π f_i t), d the new direction, s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of
-// the step before the reversal; none before the first reversal. Fails with d dropped, the clock not
-// restarted at each reversal, or h_i ignored.
+// the step before the reversal; none before the first reversal. With impact_travel_in δ_i the clock
+// starts at the step the drum has travelled δ_i since the reversal (the clearance closed). Fails with
+// d dropped, the clock not restarted at each reversal, h_i or δ_i ignored.
 TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
   BrfdParams plain = coulomb_band();
   const double a_sin = 0.3, a_cos = -0.1, hz = 8.0, decay = 0.1, dt = 1e-3;
-  for (const double share : {0.0, 1.0}) {
+  // (h_i, δ_i): a set amplitude, by the force released, and struck after 0.02 in of travel
+  for (const auto& [share, travel_in] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {1.0, 0.0}, {0.0, 0.02}}) {
     BrfdParams p = plain;
     p.effects.backlash = BacklashEffect{};
+    p.effects.backlash->impact_travel_in = travel_in;
     p.effects.backlash->impact_sin_kip = a_sin;
     p.effects.backlash->impact_cos_kip = a_cos;
     p.effects.backlash->impact_frequency_hz = hz;
@@ -1469,16 +1519,24 @@ TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
     m.set_bristle_in(m.bristle_for_force(1.0));
     ref.set_bristle_in(ref.bristle_for_force(1.0));
     DamperInput in;
-    double worst = 0.0, largest = 0.0, t = -1.0, before = 0.0, released = 0.0;
+    double worst = 0.0, largest = 0.0, t = -1.0, before = 0.0, released = 0.0, s = 0.0;
     int last = 1;
+    bool pending = false;
     for (int i = 0; i < 4000; ++i) {
       // forward first, a stronger stroke each second: reversals near 0.5, 1.5, 2.5, 3.5 s
       in.drum_vel_in_per_s = (0.5 + 0.5 * std::floor(i * dt + 0.5)) * std::cos(2.0 * M_PI * 0.5 * i * dt);
       const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
-      if (dir != 0 && dir != last) {
-        t = 0.0;
+      if (dir != 0 && dir != last) {  // the reversal: the ring waits until the drum has travelled δ_i
+        t = -1.0;
+        s = 0.0;
+        pending = true;
         last = dir;
         released = before;
+      }
+      s += std::abs(in.drum_vel_in_per_s) * dt;
+      if (pending && s >= travel_in) {
+        pending = false;
+        t = 0.0;
       } else if (t >= 0.0) {
         t += dt;
       }
@@ -1490,8 +1548,8 @@ TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
       worst = std::max(worst, std::abs(d - expected));
       largest = std::max(largest, std::abs(d));
     }
-    EXPECT_LT(worst, 1e-12) << "h_i " << share;
-    EXPECT_GT(largest, 0.15) << "h_i " << share;  // the ring was there
+    EXPECT_LT(worst, 1e-12) << "h_i " << share << " delta_i " << travel_in;
+    EXPECT_GT(largest, 0.15) << "h_i " << share << " delta_i " << travel_in;  // the ring was there
   }
 }
 
