@@ -104,6 +104,8 @@ void BrfdModel::reset() {
   reversal_travel_in_ = kEngagedTravelIn;
   stroke_travel_in_ = previous_stroke_in_ = 0.0;
   last_direction_ = 0;
+  drum_position_in_ = turn_position_in_ = turn_force_kip_ = 0.0;
+  strike_clock_s_ = -1.0;
   drum_start_in_.reset();
   play_band_in_.reset();
   play_drum_in_ = 0.0;
@@ -204,6 +206,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
       dfc = b * (std::pow(std::max(1.0 + dfc / b, 0.01), e.pretension->clamp_exponent) - 1.0);
     if (e.pretension) {
       dfc *= e.pretension->clamp_gain;
+      if (dfc < 0.0) dfc *= e.pretension->release_gain;  // a kink at the pre-tension (effects.h)
       // Non-additive clamping of the two actuators: c u1 u2.
       dfc += e.pretension->actuator_coupling_kip_per_in2 * (x1 - s.actuator1_initial_in) * (x2 - s.actuator2_initial_in);
     }
@@ -254,9 +257,11 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double band_gain = last_direction_ >= 0 ? 2.0 * h : 2.0 * (1.0 - h);
     const double stroke = e.backlash->takeup_stroke_in;  // the loss by the previous stroke, min(1, S_p/L_s)
     const double by_stroke = stroke > 0.0 ? std::min(1.0, previous_stroke_in_ / stroke) : 1.0;
-    const double lost = std::min(
-        0.95, band_gain * by_stroke * e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in));
-    factor *= 1.0 - lost;
+    const double lost =
+        reversal_travel_in_ < e.backlash->takeup_onset_in  // the band still taut (its onset δ_t)
+            ? 0.0
+            : std::min(0.95, band_gain * by_stroke * e.backlash->takeup_dip * std::exp(-reversal_travel_in_ / e.backlash->takeup_length_in));
+    factor *= 1.0 - e.backlash->takeup_level_share * lost;  // ℓ = 0: the levels kept, the stiffness only
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
   fc *= factor * kinetic_only * rotation;
@@ -614,22 +619,50 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double speed = std::abs(v);
   const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
   if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings())) || stroke_wrap) {
-    // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the speed
-    // passing the threshold against the last direction.
-    const int direction = v >= BacklashEffect::kReversalSpeedInPerS ? 1 : v <= -BacklashEffect::kReversalSpeedInPerS ? -1 : 0;
-    if (direction != 0 && direction != last_direction_) {
-      if (last_direction_ != 0) {
-        reversal_travel_in_ = 0.0;
-        previous_stroke_in_ = stroke_travel_in_;
-        stroke_travel_in_ = 0.0;
-        reversal_time_s_ = -1.0;  // the ring waits for the clearance to close (impact_travel_in)
-        impact_pending_ = true;
-        reversal_force_kip_ = last_force_kip_;
+    // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the drum turned
+    // back by kReversalTravelIn from the furthest point of its last direction (a hysteresis on the
+    // drum position ∫v dt: rest jitter and a creeping stop are none); the travel since the reversal
+    // counts from that turn point (effects.h).
+    const double travel = speed * dt_s;
+    drum_position_in_ += v * dt_s;
+    if (last_direction_ == 0) {  // the direction not known yet: the first travel of kReversalTravelIn sets it
+      if (std::abs(drum_position_in_ - turn_position_in_) >= BacklashEffect::kReversalTravelIn) {
+        last_direction_ = drum_position_in_ > turn_position_in_ ? 1 : -1;
+        turn_position_in_ = drum_position_in_;
       }
-      last_direction_ = direction;
+      reversal_travel_in_ = std::min(reversal_travel_in_ + travel, kEngagedTravelIn);
+      stroke_travel_in_ += travel;
+    } else {
+      const double back = last_direction_ * (turn_position_in_ - drum_position_in_);  // travel back from the turn point
+      const double strike = e.backlash ? e.backlash->impact_travel_in : 0.0;
+      if (back <= 0.0) {  // still going the last direction: a new furthest point
+        turn_position_in_ = drum_position_in_;
+        turn_force_kip_ = last_force_kip_;
+        strike_clock_s_ = -1.0;
+      } else if (strike_clock_s_ < 0.0 && back >= strike) {
+        strike_clock_s_ = 0.0;  // the clearance δ_i closed on this step (if it turns out a reversal)
+      } else if (strike_clock_s_ >= 0.0 && back < strike) {
+        strike_clock_s_ = -1.0;
+      }
+      if (strike_clock_s_ >= 0.0) strike_clock_s_ += dt_s;
+      if (back >= BacklashEffect::kReversalTravelIn) {
+        last_direction_ = -last_direction_;
+        previous_stroke_in_ = std::max(stroke_travel_in_ + travel - back, 0.0);
+        stroke_travel_in_ = back;
+        reversal_travel_in_ = back;
+        reversal_force_kip_ = turn_force_kip_;
+        // The ring's clock runs from the step the drum passed δ_i beyond the turn point; beyond this
+        // step's travel it waits (impact_pending_).
+        impact_pending_ = strike_clock_s_ < 0.0;
+        reversal_time_s_ = impact_pending_ ? -1.0 : strike_clock_s_ - dt_s;
+        turn_position_in_ = drum_position_in_;
+        turn_force_kip_ = last_force_kip_;
+        strike_clock_s_ = -1.0;
+      } else {
+        reversal_travel_in_ = std::min(reversal_travel_in_ + travel, kEngagedTravelIn);
+        stroke_travel_in_ += travel;
+      }
     }
-    reversal_travel_in_ = std::min(reversal_travel_in_ + speed * dt_s, kEngagedTravelIn);
-    stroke_travel_in_ += speed * dt_s;
     if (impact_pending_ && e.backlash && reversal_travel_in_ >= e.backlash->impact_travel_in) {  // the clearance closes: the strike
       impact_pending_ = false;
       reversal_time_s_ = 0.0;

@@ -207,6 +207,10 @@ class BrfdModel final : public DamperModel {
   double stroke_travel_in_ = 0.0;  ///< drum travel since the last reversal (from the start, uncapped), in
   double previous_stroke_in_ = 0.0;  ///< S_p of backlash's take-up: the travel between the last two reversals, in
   int last_direction_ = 0;                ///< +1/−1: the direction the drum last moved in (0: not yet known)
+  double drum_position_in_ = 0.0;         ///< ∫v dt since the start: the drum position the reversals are told on, in
+  double turn_position_in_ = 0.0;         ///< the furthest position of the last direction since its reversal, in
+  double turn_force_kip_ = 0.0;           ///< the force on the step that furthest position was reached, kip
+  double strike_clock_s_ = -1.0;          ///< time since the drum passed impact_travel_in back from the turn point (< 0: not), s
   std::optional<double> drum_start_in_;   ///< drum displacement at the start of the run (first step), in
   std::optional<double> play_band_in_;    ///< x_b of backlash's drive-line play: the band's side, in
   double play_drum_in_ = 0.0;             ///< the drum displacement of the last step (travel in the play), in

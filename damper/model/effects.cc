@@ -27,7 +27,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
                   "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
-                  "impact_force_share", "impact_travel_in"});
+                  "impact_force_share", "impact_travel_in", "takeup_level_share", "takeup_onset_in"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -37,6 +37,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.takeup_dip = b.get_double_in("takeup_dip", 0.0, 0.0, 0.95);
     x.takeup_length_in = b.get_double_in("takeup_length_in", 0.1, 1e-4, 10.0);
     x.takeup_force_share = b.get_double_in("takeup_force_share", 0.0, 0.0, 1.0);
+    x.takeup_level_share = b.get_double_in("takeup_level_share", 1.0, 0.0, 1.0);
+    x.takeup_onset_in = b.get_double_in("takeup_onset_in", 0.0, 0.0, 1.0);
     x.takeup_forward_share = b.get_double_in("takeup_forward_share", 0.5, 0.0, 1.0);
     x.takeup_stroke_in = b.get_double_in("takeup_stroke_in", 0.0, 0.0, 100.0);
     x.impact_sin_kip = b.get_double_in("impact_sin_kip", 0.0, -50.0, 50.0);
@@ -126,7 +128,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
-                  "wear_recovery_per_s", "wear_actuator_share", "clamp_gain", "actuator_coupling_kip_per_in2"});
+                  "wear_recovery_per_s", "wear_actuator_share", "clamp_gain", "actuator_coupling_kip_per_in2",
+                  "release_gain"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -136,6 +139,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.wear_recovery_per_s = p.get_double_in("wear_recovery_per_s", 0.0, 0.0, 1e3);
     x.wear_actuator_share = p.get_double_in("wear_actuator_share", 1.0, 0.0, 1.0);
     x.clamp_gain = p.get_double_in("clamp_gain", 1.0, 0.05, 20.0);
+    x.release_gain = p.get_double_in("release_gain", 1.0, 0.05, 20.0);
     x.actuator_coupling_kip_per_in2 = p.get_double_in("actuator_coupling_kip_per_in2", 0.0, -1e6, 1e6);
     e.pretension = x;
   }
@@ -235,8 +239,8 @@ std::vector<EffectSpec> build_library() {
       "backlash", "band slack after reversal: fast release, force near zero over a drum travel 2*slack, gradual re-tension",
       "S(z) = k sigma0 sign(z) h(max(|z| - slack, 0)), h(u) = u^2/(2 retension) below retension, u - retension/2 "
       "beyond; dz/dt = R (v - |v| S(z)/g(v)), R = release_ratio while the band unloads; F = S(z) + e(z) sigma1 "
-      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - L), N x (1 - "
-      "takeup_force_share L), L = takeup_dip exp(-s/takeup_length) (x 2h_t into forward motion, x 2(1 - h_t) into "
+      "dz/dt + (e + (1 - e) slack_viscous_share) sigma2 v, e = engaged share; take-up: Fc, Fs x (1 - takeup_level_share L), N x (1 - "
+      "takeup_force_share L), L = takeup_dip exp(-s/takeup_length) once s >= takeup_onset (x 2h_t into forward motion, x 2(1 - h_t) into "
       "backward, h_t = takeup_forward_share; x min(1, S_p/takeup_stroke_in), S_p the previous stroke's travel; at most "
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
@@ -259,7 +263,9 @@ std::vector<EffectSpec> build_library() {
        {"impact_frequency_hz", 1.0, 20.0, 5.0, 5.0, true},
        {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true},
        {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
-       {"impact_travel_in", 0.0, 0.05, 0.0, 0.005, false}},
+       {"impact_travel_in", 0.0, 0.05, 0.0, 0.005, false},
+       {"takeup_level_share", 0.0, 1.0, 1.0, 0.5, false, true},
+       {"takeup_onset_in", 0.0, 0.05, 0.0, 0.01, false}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -281,6 +287,8 @@ std::vector<EffectSpec> build_library() {
         b.impact_decay_s = t[15];
         b.impact_force_share = t[16];
         b.impact_travel_in = t[17];
+        b.takeup_level_share = t[18];
+        b.takeup_onset_in = t[19];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -288,7 +296,8 @@ std::vector<EffectSpec> build_library() {
                                    b.slack_viscous_share, b.takeup_dip, b.takeup_length_in,
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
-                                   b.impact_decay_s, b.impact_force_share, b.impact_travel_in};
+                                   b.impact_decay_s, b.impact_force_share, b.impact_travel_in, b.takeup_level_share,
+                                   b.takeup_onset_in};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -442,7 +451,7 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k)",
+      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), x release_gain where dFc < 0, + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k)",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
@@ -451,7 +460,8 @@ std::vector<EffectSpec> build_library() {
        {"wear_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
        {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true},
        {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true},
-       {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false}},
+       {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false},
+       {"release_gain", 0.2, 3.0, 1.0, 1.5, true}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -464,12 +474,13 @@ std::vector<EffectSpec> build_library() {
         p.wear_actuator_share = t[6];
         p.clamp_gain = t[7];
         p.actuator_coupling_kip_per_in2 = t[8];
+        p.release_gain = t[9];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
                                    p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain,
-                                   p.actuator_coupling_kip_per_in2};
+                                   p.actuator_coupling_kip_per_in2, p.release_gain};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -567,8 +578,10 @@ std::vector<EffectSpec> build_library() {
       if (s.name == name) s.mechanisms = std::move(groups);
   };
   mech("backlash", {{"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share"},  // slack band
-                    {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share"},  // grip lost at a reversal, taken up with travel, by band
+                    {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share", "takeup_onset_in"},  // grip lost at a reversal, taken up with travel, by band
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
+                    // the band stiffness collapsed at the reversal and re-established with travel, the levels kept
+                    {"takeup_dip", "takeup_length_in", "takeup_forward_share", "takeup_onset_in", "takeup_force_share=1", "takeup_level_share=0"},
                     {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share", "impact_travel_in"},  // impact ring
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
@@ -594,6 +607,7 @@ std::vector<EffectSpec> build_library() {
   mech("pretension", {{"fs_share", "instant_share"},
                       {"clamp_exponent"},                // a power of the tension ratio
                       {"clamp_exponent", "clamp_gain"},  // Eq. (4)'s curvature and gain apart
+                      {"clamp_gain", "release_gain"},    // a kink at the pre-tension: one slope tightening, another releasing
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"},
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"},
                       {"actuator_coupling_kip_per_in2"}});  // the two actuators' clamping not additive

@@ -39,14 +39,29 @@
 ///    band, not at the lining); each band its own take-up (takeup_forward_share = h_t, ninth session):
 ///    a × 2 h_t after a reversal into forward motion, a × 2 (1 − h_t) into backward motion (one band
 ///    per direction on the BRFD: a slack in one band only is a one-way take-up; blind set 15 t15);
-///    a reversal is the drum speed passing 0.05 in/s against the direction it last moved in; at the
-///    start the last direction is the sign of the initial band force and s is large (engaged).
+///    a reversal is the drum turned back by 0.004 in (BacklashEffect::kReversalTravelIn) from the
+///    furthest point of the direction it last moved in, and s counts from that turn point (eighteenth
+///    session; until then the drum speed passing 0.05 in/s against the last direction was one, and a
+///    drum creeping back by 0.0008 in as it stopped, blind set 28 t02, collapsed the band for the whole
+///    rest after it); at the start the last direction is the sign of the initial band force and s is
+///    large (engaged). The impact ring's clock and S_p count from the turn point alike.
 ///    The loss by the stroke before the reversal (takeup_stroke_in = L_s, added 2026-11-27 after
 ///    outside authors' collapse scaled by the energy stored in the taut band over the previous
 ///    stroke, blind set 23 t25, and lost motion proportional to it, set 22 t26): a × min(1, S_p/L_s),
 ///    S_p the drum travel between the last two reversals (a longer stroke stretches the band
 ///    further, and more of its grip is lost when it unloads; belt creep, Johnson 1985 ch. 8;
 ///    Cao et al. 2015); L_s = 0: the same loss after every stroke.
+///    The take-up on the band stiffness alone (takeup_level_share = ℓ, added in the eighteenth session
+///    after an outside author's re-engagement stiffness σ0 (1 − β e^(−s/λ)) in the bristle law and the
+///    force, blind set 28 t02, with the sliding levels kept): the levels Fc, Fs × (1 − ℓ a e^(−s/λ)); ℓ = 1
+///    (default) the capacity lost as above, ℓ = 0 with f = 1 the band's stiffness N σ0 collapses at the
+///    reversal and is re-established with travel while the friction capacity stays — the gradual
+///    re-engagement of Cao et al. 2015, a slack band whose stiffness, not whose grip, is lost: the force
+///    falls at once, the bristle state moves with the slower rate N σ0 |v|/g and settles at the same level g.
+///    Its onset (takeup_onset_in = δ_t, eighteenth session): the loss a e^(−s/λ) applies once s ≥ δ_t, s
+///    counted from the turn point — the loaded band stays taut while the lining's elastic deflection
+///    unloads, and lets go after δ_t of travel back (set 28 t02's author let it go 0.02 in after the turn;
+///    a collapse from the turn point left 0.47 kip RMS where the author's truth sat at the noise floor).
 ///    Impact ring at re-engagement (impact_sin_kip = A_s, impact_cos_kip = A_c, impact_frequency_hz =
 ///    f_i, impact_decay_s = τ_i; added 2026-11-27 after an outside author's clearance impact ringing
 ///    at each re-engagement, blind set 23 t30): ΔF = d e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t),
@@ -242,6 +257,11 @@
 ///    logarithmic saturation, q = 2 the capstan's e^(pL) to second order), q = 1 scales the
 ///    increment (the scaling factors C of Table 2 off). Outside authors' capstan map
 ///    b + (e^(pL) − 1)/p (blind set 16 t18) and saturating gain (set 15 t06) were outside q alone.
+///    A kink at the pre-tension (release_gain = k_r, added in the eighteenth session after an outside
+///    author's bilinear band tension, blind set 27 t05, which softens where the actuators release below
+///    their pre-tension positions): ΔFc × k_r where ΔFc < 0 (after k and q) — the clamping law with one
+///    slope tightening and another releasing, as a band whose pre-tension spring (or linkage stop)
+///    engages on one side of the set point only; with k the two slopes are apart (k = 1, k_r = 1: Eq. 4).
 ///    Actuator coupling (actuator_coupling_kip_per_in2 = c, added 2026-11-27 after three outside
 ///    authors' non-additive clamping, blind sets 21-23): the two actuators act on bands sharing the
 ///    drum, ΔFc += c u1 u2 with u_k = x_k − x'_k (after any actuator_lag); the seed paper neglects
@@ -365,6 +385,12 @@ struct BacklashEffect {
   double takeup_dip = 0.0;        ///< a: share of the friction capacity lost at a reversal, 0..0.95
   double takeup_length_in = 0.1;  ///< λ: drum travel over which the capacity is taken up again, in (> 0)
   double takeup_force_share = 0.0;  ///< f: share of the lost grip that scales the band force at once, 0..1
+  /// ℓ: share of the loss on the friction levels Fc, Fs, 0..1 (1: the capacity lost; 0 with f = 1: the
+  /// band stiffness only, the levels kept)
+  double takeup_level_share = 1.0;
+  /// δ_t: the loss starts once the drum has turned back δ_t from the turn point (the band taut until
+  /// the lining has unloaded), in; 0: at the reversal
+  double takeup_onset_in = 0.0;
   /// h_t in [0, 1]: the take-up by band, a × 2 h_t after a reversal into forward motion, × 2 (1 − h_t)
   /// into backward motion (0.5: the same both ways; 1 or 0: one band only); the loss at most 0.95.
   double takeup_forward_share = 0.5;
@@ -386,8 +412,11 @@ struct BacklashEffect {
   bool impact_rings() const { return impact_sin_kip != 0.0 || impact_cos_kip != 0.0; }
   double play_in = 0.0;              ///< δ_p: half-width of the drive-line play (backlash operator), in
   double play_release_per_in = 0.0;  ///< κ_r: the band force lost per in of drum travel across the play, 1/in
-  /// A reversal: the drum speed passes this against the direction it last moved in (in/s).
-  static constexpr double kReversalSpeedInPerS = 0.05;
+  /// A reversal: the drum has turned back by this travel from the furthest point of the direction it
+  /// last moved in (in): a hysteresis on the drum position, three times the rest jitter of the
+  /// measured displacement (0.0012 in peak to peak), so that neither that jitter nor a drum creeping
+  /// back as it stops counts. The travel since the reversal counts from the turn point.
+  static constexpr double kReversalTravelIn = 0.004;
 };
 /// Residual static force after motion stops (see file comment).
 struct ResidualStaticEffect {
@@ -519,6 +548,9 @@ struct PretensionEffect {
   /// c: the two actuators' clamping is not additive, ΔFc += c u1 u2 (u_k = x_k − x'_k, after any
   /// actuator_lag), kip/in²; 0: Eq. (4)'s sum of the two actuators' terms.
   double actuator_coupling_kip_per_in2 = 0.0;
+  /// k_r: slope of the clamping law where the actuators release below the pre-tension (ΔFc < 0),
+  /// relative to the slope tightening (1: Eq. 4's one slope; a bilinear law otherwise)
+  double release_gain = 1.0;
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

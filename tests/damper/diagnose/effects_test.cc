@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,42 @@ std::vector<double> run(const BrfdParams& p, const SyntheticOptions& o, int subs
   }
   return f;
 }
+
+// The reversal rule of effects.h written out for the references below: a reversal is the drum turned
+// back by BacklashEffect::kReversalTravelIn from the furthest point of the direction it last moved in
+// (0: not known yet; the first travel of that length sets it); the travel since the reversal and the
+// stroke count from that turn point. advance(dx) takes one step's drum travel and says whether the
+// step saw a reversal.
+struct ReversalReference {
+  int direction = 0;
+  double position = 0.0, turn = 0.0;
+  double since_reversal = 1e3, stroke = 0.0, previous_stroke = 0.0;
+  double back = 0.0;  // the travel back from the turn point after the step
+  bool advance(double dx) {
+    position += dx;
+    if (direction == 0) {
+      if (std::abs(position - turn) >= BacklashEffect::kReversalTravelIn) {
+        direction = position > turn ? 1 : -1;
+        turn = position;
+      }
+      since_reversal += std::abs(dx);
+      stroke += std::abs(dx);
+      return false;
+    }
+    back = direction * (turn - position);
+    if (back <= 0.0) turn = position;
+    if (back >= BacklashEffect::kReversalTravelIn) {
+      direction = -direction;
+      previous_stroke = stroke + std::abs(dx) - back;
+      stroke = since_reversal = back;
+      turn = position;
+      return true;
+    }
+    since_reversal += std::abs(dx);
+    stroke += std::abs(dx);
+    return false;
+  }
+};
 
 // The passive band with σ1 = σ2 = 0 and Fs = Fc (g = Fc, no Stribeck drop): the base of the
 // closed-form tests of the bristle law.
@@ -1241,8 +1278,9 @@ TEST(Effects, LevelFactorsActOnBothLevelsOrOnTheKineticLevelOnly) {
 // the last reversal (since the start before the first), on Fc and on Fs by the share w. A stroke of
 // 1 in forward at v = v_s, then 1 in back: the force against an RK4 integration of LuGre's
 // dz/dt = v − |v| σ0 z/g(s), g = Fc φ_w + (Fs (1 − w + w φ_w) − Fc φ_w) e^(−1), σ1 = σ2 = 0,
-// Fs = 1.8 Fc, s restarting at the reversal. Fails with s not restarted, the direction's k ignored
-// or the share ignored.
+// Fs = 1.8 Fc, s restarting at the reversal (ReversalReference: counted from the turn point once the
+// drum has turned back 0.004 in) and held over each 0.1 ms step as the model holds it. Fails with s
+// not restarted, the direction's k ignored or the share ignored.
 TEST(Effects, StrokeWrapBuildsUpOverEachStrokeAndRestartsAtTheReversal) {
   BrfdParams p = coulomb_band();
   p.lugre.fs_fwd_kip = 1.8 * p.lugre.fc_fwd_kip;
@@ -1257,6 +1295,7 @@ TEST(Effects, StrokeWrapBuildsUpOverEachStrokeAndRestartsAtTheReversal) {
     p.effects.self_energizing->stiction_share = w;
     BrfdModel m(p);
     DamperInput in;
+    ReversalReference turns;  // from z = 0: the direction not known until the first 0.004 in
     double z = 0.0, worst = 0.0, largest = 0.0;
     for (const double dir : {1.0, -1.0}) {
       const double v = dir * vs, k = dir > 0 ? kf : kb;
@@ -1267,9 +1306,10 @@ TEST(Effects, StrokeWrapBuildsUpOverEachStrokeAndRestartsAtTheReversal) {
       };
       auto rate = [&](double zz, double s) { return v - std::abs(v) * s0 * zz / g(s); };
       for (int i = 0; i < steps; ++i) {
-        const double s = i * vs * dt, h = vs * dt;  // the stroke's travel at the step's start, and its increment
-        const double k1 = rate(z, s), k2 = rate(z + 0.5 * dt * k1, s + 0.5 * h);
-        const double k3 = rate(z + 0.5 * dt * k2, s + 0.5 * h), k4 = rate(z + dt * k3, s + h);
+        turns.advance(v * dt);
+        const double s = turns.stroke;  // the stroke's travel at the step's end, held over the step as the model holds it
+        const double k1 = rate(z, s), k2 = rate(z + 0.5 * dt * k1, s);
+        const double k3 = rate(z + 0.5 * dt * k2, s), k4 = rate(z + dt * k3, s);
         z += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
         in.drum_vel_in_per_s = v;
         in.drum_disp_in += v * dt;
@@ -1278,8 +1318,7 @@ TEST(Effects, StrokeWrapBuildsUpOverEachStrokeAndRestartsAtTheReversal) {
         largest = std::max(largest, std::abs(s0 * z) - (dir > 0 ? g(0.0) : 0.0));
       }
     }
-    // 2e-3 kip: the model holds the level over each 0.1 ms step (its change, k Fc v_s dt/λ_w ≈ 5e-4 kip)
-    EXPECT_LT(worst, 2e-3) << "w " << w;
+    EXPECT_LT(worst, 1e-6) << "w " << w;
     EXPECT_GT(largest, 0.5) << "w " << w;  // the wrap raised the forward level
   }
 }
@@ -1465,21 +1504,15 @@ TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
     m.set_bristle_in(m.bristle_for_force(1.0));
     ref.set_bristle_in(ref.bristle_for_force(1.0));
     DamperInput in;
-    double travel = 1e3, stroke = 0.0, previous = 0.0, worst = 0.0, deepest = 1.0, shallowest = 0.0;
-    int last = 1;
+    ReversalReference turns;
+    turns.direction = 1;  // the band loaded forward
+    double worst = 0.0, deepest = 1.0, shallowest = 0.0;
     for (int i = 0; i < 4000; ++i) {
       const double amplitude = 0.75 + 0.6 * std::floor(i * dt);  // in/s, a larger stroke each second
-      in.drum_vel_in_per_s = amplitude * std::sin(2.0 * M_PI * 0.5 * i * dt);  // reversals at 1 s, 2 s, 3 s
-      const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
-      if (dir != 0 && dir != last) {
-        travel = 0.0;
-        previous = stroke;
-        stroke = 0.0;
-      }
-      if (dir != 0) last = dir;
-      travel += std::abs(in.drum_vel_in_per_s) * dt;
-      stroke += std::abs(in.drum_vel_in_per_s) * dt;
-      const double by_stroke = stroke_in > 0.0 ? std::min(1.0, previous / stroke_in) : 1.0;
+      in.drum_vel_in_per_s = amplitude * std::sin(2.0 * M_PI * 0.5 * i * dt);  // turns at 1 s, 2 s, 3 s
+      turns.advance(in.drum_vel_in_per_s * dt);
+      const double travel = turns.since_reversal;
+      const double by_stroke = stroke_in > 0.0 ? std::min(1.0, turns.previous_stroke / stroke_in) : 1.0;
       const double scale = 1.0 - a * by_stroke * std::exp(-travel / lambda);
       const double f = m.step(in, dt), f_plain = ref.step(in, dt);
       worst = std::max(worst, std::abs(f - scale * f_plain));
@@ -1496,12 +1529,102 @@ TEST(Effects, TakeUpOnTheBandForceScalesTheForceOfTheModelWithoutIt) {
   }
 }
 
-// backlash's impact ring: from the step a reversal is seen (the speed passing 0.05 in/s against the
-// last direction), the force is that of the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t +
-// A_c cos 2π f_i t), d the new direction, s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of
-// the step before the reversal; none before the first reversal. With impact_travel_in δ_i the clock
-// starts at the step the drum has travelled δ_i since the reversal (the clearance closed). Fails with
-// d dropped, the clock not restarted at each reversal, h_i or δ_i ignored.
+// backlash's take-up on the band stiffness alone (takeup_level_share ℓ = 0, takeup_force_share f = 1):
+// the re-engagement stiffness σ0 T(s), T = 1 − a e^(−s/λ) once s ≥ δ_t (takeup_onset_in; 1 before), s
+// the drum travel since the last turn point (ReversalReference), in the bristle law and in the force,
+// the sliding levels kept. Against an RK4 integration of dz/dt = v − |v| σ0 T z / Fc, F = σ0 T z
+// (σ1 = σ2 = 0, Fs = Fc), T held over each 1 ms step, through three reversals, with δ_t = 0 and
+// 0.015 in: the force collapses at each reversal (δ_t later), and after a long stroke it is back at Fc
+// (not at T Fc). Fails with ℓ ignored (the levels scaled too), with T on the force only, or δ_t ignored.
+TEST(Effects, ReengagementStiffnessCollapsesAtTheReversalAndKeepsTheSlidingLevel) {
+  const double a = 0.8, lambda = 0.1, dt = 1e-3;
+  for (const double onset : {0.0, 0.015}) {
+    BrfdParams p = coulomb_band();
+    const double s0 = p.lugre.sigma0_kip_per_in;
+    p.effects.backlash = BacklashEffect{};
+    p.effects.backlash->takeup_dip = a;
+    p.effects.backlash->takeup_length_in = lambda;
+    p.effects.backlash->takeup_force_share = 1.0;
+    p.effects.backlash->takeup_level_share = 0.0;
+    p.effects.backlash->takeup_onset_in = onset;
+    BrfdModel m(p);
+    m.set_bristle_in(m.bristle_for_force(p.lugre.fc_fwd_kip));
+    double z = p.lugre.fc_fwd_kip / s0, worst = 0.0, deepest = 1e9, level_error = 1e9, taut = 0.0;
+    ReversalReference turns;
+    turns.direction = 1;
+    DamperInput in;
+    for (int i = 0; i < 4000; ++i) {
+      in.drum_vel_in_per_s = 1.5 * std::sin(2.0 * M_PI * 0.5 * i * dt);  // turns at 1 s, 2 s, 3 s; 0.95 in strokes
+      const double v = in.drum_vel_in_per_s;
+      turns.advance(v * dt);
+      const double travel = turns.since_reversal;
+      const double tension = travel < onset ? 1.0 : 1.0 - a * std::exp(-travel / lambda);
+      const double fc = v >= 0.0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      auto rate = [&](double zz) { return v - std::abs(v) * s0 * tension * zz / fc; };
+      const int sub = 20;
+      const double h = dt / sub;
+      for (int k = 0; k < sub; ++k) {
+        const double k1 = rate(z), k2 = rate(z + 0.5 * h * k1), k3 = rate(z + 0.5 * h * k2), k4 = rate(z + h * k3);
+        z += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      }
+      const double f = m.step(in, dt), reference = s0 * tension * z;
+      worst = std::max(worst, std::abs(f - reference));
+      if (travel >= onset && travel < onset + 6e-3 && i > 100) deepest = std::min(deepest, std::abs(f));
+      if (travel < onset && i > 100) taut = std::max(taut, std::abs(f));
+      if (travel > 0.8) level_error = std::min(level_error, std::abs(std::abs(f) - fc));  // late in the stroke
+    }
+    EXPECT_LT(worst, 1e-6) << "onset " << onset;
+    EXPECT_LT(deepest, 0.3 * p.lugre.fc_bwd_kip) << "onset " << onset;  // the collapse at the reversal
+    EXPECT_LT(level_error, 0.01 * p.lugre.fc_fwd_kip) << "onset " << onset;  // the sliding level kept
+    if (onset > 0.0) {
+      EXPECT_GT(taut, 0.5 * p.lugre.fc_fwd_kip);  // the band held its force until the onset
+    }
+  }
+}
+
+// A reversal is the drum turned back by 0.004 in (BacklashEffect::kReversalTravelIn), not a velocity
+// sign: a drum that stops and jitters at rest (±0.3 in/s, 0.0019 in peak to peak, like the measured
+// displacement's rest noise) and then creeps back 0.002 in keeps its band engaged — the force is that
+// of the model without the take-up, to 1e-9 kip — and a turn of 0.1 in back then collapses it. Fails
+// with a reversal told by the speed passing 0.05 in/s (the rule until the eighteenth session).
+TEST(Effects, RestJitterAndACreepingStopAreNoReversal) {
+  BrfdParams plain = coulomb_band();
+  BrfdParams p = plain;
+  p.effects.backlash = BacklashEffect{};
+  p.effects.backlash->takeup_dip = 0.9;
+  p.effects.backlash->takeup_length_in = 0.1;
+  p.effects.backlash->takeup_force_share = 1.0;
+  p.effects.backlash->takeup_level_share = 0.0;
+  BrfdModel m(p), ref(plain);
+  const double dt = 1e-3;
+  DamperInput in;
+  double worst = 0.0, f = 0.0, f_plain = 0.0;
+  for (int i = 0; i < 2500; ++i) {
+    const double t = i * dt;
+    in.drum_vel_in_per_s = t < 0.5 ? 1.0 : t < 1.5 ? 0.3 * std::cos(2.0 * M_PI * 50.0 * t) : t < 2.5 ? -0.002 : 0.0;
+    f = m.step(in, dt);
+    f_plain = ref.step(in, dt);
+    worst = std::max(worst, std::abs(f - f_plain));
+  }
+  EXPECT_LT(worst, 1e-9);
+  const double held = f_plain;
+  EXPECT_GT(held, 0.05 * plain.lugre.fc_fwd_kip);  // the band still holds force at rest
+  in.drum_vel_in_per_s = -1.0;
+  double collapse = 0.0;
+  for (int i = 0; i < 100; ++i) {  // 0.1 in back: a reversal
+    collapse = std::max(collapse, std::abs(m.step(in, dt) - ref.step(in, dt)));
+  }
+  EXPECT_GT(collapse, 0.5 * held);  // the band's stiffness collapsed as the drum turned
+}
+
+// backlash's impact ring: from the step a reversal is seen (ReversalReference), the force is that of
+// the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t), d the new direction,
+// s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of the step before the drum reached its turn
+// point; none before the first reversal. t counts from the step the drum had travelled δ_i back from
+// the turn point (the clearance closed; δ_i = 0: the first step back), also where that was before the
+// reversal was seen; a δ_i beyond the reversal's travel is waited for. Fails with d dropped, the clock
+// not restarted at each reversal, h_i or δ_i ignored, or the clock started at the step the reversal is
+// seen.
 TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
   BrfdParams plain = coulomb_band();
   const double a_sin = 0.3, a_cos = -0.1, hz = 8.0, decay = 0.1, dt = 1e-3;
@@ -1519,30 +1642,38 @@ TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
     m.set_bristle_in(m.bristle_for_force(1.0));
     ref.set_bristle_in(ref.bristle_for_force(1.0));
     DamperInput in;
-    double worst = 0.0, largest = 0.0, t = -1.0, before = 0.0, released = 0.0, s = 0.0;
-    int last = 1;
+    ReversalReference turns;
+    turns.direction = 1;
+    double worst = 0.0, largest = 0.0, before = 0.0, released = 0.0, turn_force = 0.0;
+    int strike_step = -1, ring_from = -1, ring_direction = 0;
     bool pending = false;
     for (int i = 0; i < 4000; ++i) {
-      // forward first, a stronger stroke each second: reversals near 0.5, 1.5, 2.5, 3.5 s
+      // forward first, a stronger stroke each second: turns at 0.5, 1.5, 2.5, 3.5 s
       in.drum_vel_in_per_s = (0.5 + 0.5 * std::floor(i * dt + 0.5)) * std::cos(2.0 * M_PI * 0.5 * i * dt);
-      const int dir = in.drum_vel_in_per_s >= 0.05 ? 1 : in.drum_vel_in_per_s <= -0.05 ? -1 : 0;
-      if (dir != 0 && dir != last) {  // the reversal: the ring waits until the drum has travelled δ_i
-        t = -1.0;
-        s = 0.0;
-        pending = true;
-        last = dir;
-        released = before;
+      const bool reversal = turns.advance(in.drum_vel_in_per_s * dt);
+      if (turns.back <= 0.0 && !reversal) {  // a new furthest point: its force, no strike yet
+        turn_force = before;
+        strike_step = -1;
+      } else if (strike_step < 0 && turns.back >= travel_in) {
+        strike_step = i;
+      } else if (strike_step >= 0 && turns.back < travel_in) {
+        strike_step = -1;
       }
-      s += std::abs(in.drum_vel_in_per_s) * dt;
-      if (pending && s >= travel_in) {
+      if (reversal) {
+        released = turn_force;
+        ring_direction = turns.direction;
+        pending = strike_step < 0;
+        ring_from = strike_step;
+        strike_step = -1;
+      }
+      if (pending && turns.since_reversal >= travel_in) {
         pending = false;
-        t = 0.0;
-      } else if (t >= 0.0) {
-        t += dt;
+        ring_from = i;
       }
+      const double t = ring_from >= 0 ? (i - ring_from) * dt : -1.0;
       const double w = 2.0 * M_PI * hz * t, scale = 1.0 - share + share * std::abs(released);
       const double expected =
-          t < 0.0 ? 0.0 : last * scale * std::exp(-t / decay) * (a_sin * std::sin(w) + a_cos * std::cos(w));
+          t < 0.0 ? 0.0 : ring_direction * scale * std::exp(-t / decay) * (a_sin * std::sin(w) + a_cos * std::cos(w));
       before = ref.step(in, dt);
       const double d = m.step(in, dt) - before;
       worst = std::max(worst, std::abs(d - expected));
@@ -1554,16 +1685,21 @@ TEST(Effects, ImpactRingAfterEachReversalIsAddedToTheForce) {
 }
 
 // Pretension's clamping law in steady sliding at a held actuator setting (v >> v_s, σ1 = σ2 = 0):
-// F = b N^q, N = Fc/b the tension ratio of Eq. (4) (q = 1: Eq. 4 itself; passive: b whatever q).
+// F = b + k b (N^q − 1), N = Fc/b the tension ratio of Eq. (4) (q = k = 1: Eq. 4 itself; passive: b
+// whatever q), the increment × k_r (release_gain) where it is negative: the actuators extended past
+// their pre-tension positions (N < 1). Fails with k_r applied on both sides or ignored.
 TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
   BrfdParams p = synthetic_base();
   ASSERT_EQ(p.kind, DamperKind::semiactive);
   p.lugre.sigma1_kip_s_per_in = 0.0;
   p.lugre.sigma2_kip_s_per_in = 0.0;
-  for (const auto& [q, k] : std::vector<std::pair<double, double>>{{0.6, 1.0}, {1.0, 1.0}, {1.8, 1.0}, {1.0, 0.7}, {2.0, 0.5}}) {
-    for (double dx : {0.0, -0.005, -0.01}) {  // the actuators retract: more band tension
+  const std::vector<std::array<double, 3>> laws{{0.6, 1.0, 1.0}, {1.0, 1.0, 1.0}, {1.8, 1.0, 1.0}, {1.0, 0.7, 1.0}, {2.0, 0.5, 1.0},
+                                                {1.0, 1.0, 0.4}, {1.0, 0.8, 1.7}};
+  for (const auto& [q, k, kr] : laws) {
+    for (double dx : {0.0, -0.005, -0.01, 0.004}) {  // the actuators retract: more band tension; extend: less
       p.effects.pretension = PretensionEffect{0.0, 0.0, 0.0, q};
       p.effects.pretension->clamp_gain = k;
+      p.effects.pretension->release_gain = kr;
       BrfdModel m(p);
       BrfdParams plain = p;
       plain.effects = {};
@@ -1577,12 +1713,16 @@ TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
       if (dx < -0.008) {
         ASSERT_GT(n, 1.3) << "the actuators raise the tension";
       }
+      if (dx > 0.0) {
+        ASSERT_LT(n, 0.9) << "the actuators lower the tension";
+      }
       double f = 0.0;
       for (int i = 0; i < 20000; ++i) {
         in.drum_disp_in += 4.0 * 1e-4;
         f = m.step(in, 1e-4);
       }
-      EXPECT_NEAR(f, b + k * b * (std::pow(n, q) - 1.0), 1e-6 * b) << "q " << q << " k " << k << " dx " << dx;
+      const double increment = k * b * (std::pow(n, q) - 1.0);
+      EXPECT_NEAR(f, b + (increment < 0.0 ? kr : 1.0) * increment, 1e-6 * b) << "q " << q << " k " << k << " k_r " << kr << " dx " << dx;
     }
   }
 }
