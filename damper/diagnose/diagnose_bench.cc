@@ -303,30 +303,30 @@ std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
 std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
-    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
     c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
     return c;
   }
-  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
   // A slack band whose lining stays on the drum: the viscous force goes on through the slack.
-  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
-  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
   // The grip lost at a reversal (half of it) and taken up over 0.08 in of travel, no slack.
-  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
   // Drive-line play of 2 x 0.05 in, the band unloading over it (e^(-20 s)).
-  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
   // The grip lost at a reversal in proportion to the stroke before it, up to 1.5 in (band stretch
   // stored over the stroke), the band force scaled with it.
-  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
   // An impact ring at each re-engagement: 0.3 kip, 8 Hz, decaying in 0.1 s, a quarter of it in phase
   // with the reversal's force step.
   // The band stiffness collapsed at each reversal (to a fifth, 0.015 in after the turn) and re-established over 0.12 in of travel,
   // the sliding levels kept (the gradual re-engagement of Cao et al. 2015).
-  c.push_back(library_case("backlash", "reengagement", {0.0, 0.0, 1.0, 1.0, 0.0, 0.8, 0.12, 1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 0.0, 0.015}));
-  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("backlash", "reengagement", {0.0, 0.0, 1.0, 1.0, 0.0, 0.8, 0.12, 1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 0.0, 0.015, 0.0}));
+  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0}));
   c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
@@ -348,31 +348,35 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // The clamping rings after each actuator motion: a second-order response of period 1.1 s, ζ 0.3
   // (its envelope decays over 0.6 s, after the actuators stopped).
   c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // Stribeck speed and σ2 by direction
-  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0}));  // band stiffness by direction of motion
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));  // band stiffness by direction of motion
   // One band differs: the backward band's Stribeck speed × 1.6, the forward band as modelled.
-  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0}));
+  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
   // One band's own lining: the forward band's friction rising as 0.1 |v|^0.5 (the backward band as
   // modelled); the backward band fading with its own friction work (30 % over ~40 kip·in), cooling
   // with a 5 s time constant.
-  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0}));
-  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2}));
-  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0}));
-  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0}));
+  // The forward band's run-in on Eq. (4)'s Fc only (Fs kept): its level rises 0.5 % per kip in of its own work, saturating.
+  c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
-  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // A shear-thinning film in place of part of the viscous force: -0.3 v + 0.4 sgn(v) |v|^0.5.
-  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // Frictional memory of the whole friction-velocity curve: the Stribeck term and the viscous force
   // see the velocity 0.1 s late.
-  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0, 0.0, 1.0, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // Flash heating: the levels fall by 30 % of (1 - 0.8/|v|) above 0.8 in/s (Rice 2006).
-  c.push_back(library_case("velocity", "flash", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.8, 0.0, 0.5, 0.0}));
+  c.push_back(library_case("velocity", "flash", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.8, 0.0, 0.5, 0.0, 0.0, 1.0}));
   // Flash temperature by the load (Archard 1959): Fc × (1 − 0.08 Fc |v|), low Péclet number.
-  c.push_back(library_case("velocity", "flash_load", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.08, 1.0, 0.0}));
+  c.push_back(library_case("velocity", "flash_load", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.08, 1.0, 0.0, 0.0, 1.0}));
+  // The regularized steady-state rate law on Eq. (4)'s Fc only: Fc (1 + 0.15 ln(1 + |v|/0.3 in/s)), Fs kept.
+  c.push_back(library_case("velocity", "rate_kinetic", {2.0, 0.0, 0.0, 0.3, 0.0, 0.15, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 1.0, 0.0}));
   c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0}));
   c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0}));
   c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0}));  // a saturating contact, Fc = b N^0.6

@@ -106,6 +106,7 @@ void BrfdModel::reset() {
   last_direction_ = 0;
   drum_position_in_ = turn_position_in_ = turn_force_kip_ = 0.0;
   strike_clock_s_ = -1.0;
+  strike_speed_in_per_s_ = impact_speed_in_per_s_ = 0.0;
   drum_start_in_.reset();
   play_band_in_.reset();
   play_drum_in_ = 0.0;
@@ -136,8 +137,9 @@ double BrfdModel::rate_factor(double speed) const {
   if (ve->rate_slope == 0.0 && ve->direct_slope == 0.0) return std::max(0.2, flash);
   const double now = speed + VelocityEffect::kSpeedFloorInPerS;
   const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
-  const double direct = ve->direct_slope != 0.0 ? ve->direct_slope * std::log(now / ve->reference_speed_in_per_s) : 0.0;
-  const double state = ve->rate_slope != 0.0 ? ve->rate_slope * std::log(seen / ve->reference_speed_in_per_s) : 0.0;
+  const double c = ve->rate_regularization;  // ln(c + v/v_r): 0 the plain law, 1 regularized (effects.h)
+  const double direct = ve->direct_slope != 0.0 ? ve->direct_slope * std::log(c + now / ve->reference_speed_in_per_s) : 0.0;
+  const double state = ve->rate_slope != 0.0 ? ve->rate_slope * std::log(c + seen / ve->reference_speed_in_per_s) : 0.0;
   return std::max(0.2, (1.0 + direct + state) * flash);
 }
 
@@ -241,9 +243,18 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     if (k_wrap != 0.0)
       rotation *= std::max(0.05, 1.0 + k_wrap * (1.0 - std::exp(-stroke_travel_in_ / e.self_energizing->stroke_wrap_length_in)));
   }
-  if (e.asymmetry)  // each band its level difference: constant, its own speed law, its own fade (effects.h)
-    factor *= e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
-  if (e.velocity) factor *= rate_factor(speed);
+  // asymmetry's and velocity's level factors: on Fc, and on Fs by their stiction shares (effects.h)
+  double kinetic = 1.0, stiction = 1.0;
+  if (e.asymmetry) {  // each band its level difference: constant, its own speed law, its own fade (effects.h)
+    const double asym = e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
+    kinetic *= asym;
+    stiction *= 1.0 - e.asymmetry->stiction_share * (1.0 - asym);
+  }
+  if (e.velocity) {
+    const double phi = rate_factor(speed);
+    kinetic *= phi;
+    stiction *= 1.0 - e.velocity->rate_stiction_share * (1.0 - phi);
+  }
   // velocity's flash temperature by the load: the kinetic level × φ_T = 1 − c Fc |v|^n_T, the
   // stiction level × (1 − w_T + w_T φ_T) (effects.h).
   double kinetic_only = 1.0;
@@ -264,8 +275,8 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     factor *= 1.0 - e.backlash->takeup_level_share * lost;  // ℓ = 0: the levels kept, the stiffness only
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
-  fc *= factor * kinetic_only * rotation;
-  fs *= factor * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0) *
+  fc *= factor * kinetic * kinetic_only * rotation;
+  fs *= factor * stiction * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0) *
         (e.self_energizing ? 1.0 - e.self_energizing->stiction_share * (1.0 - rotation) : 1.0);
   if (params_.kind == DamperKind::semiactive) fc = std::max(fc, params_.semiactive.fc_floor_kip);
   return {std::max(fc, 1e-6), std::max(fs, 1e-6), tension, b};
@@ -492,7 +503,8 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
   const BacklashEffect* bl = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
   if (bl && bl->impact_rings() && reversal_time_s_ >= 0.0) {
     const double t = reversal_time_s_ - dt_s, phase = 2.0 * M_PI * bl->impact_frequency_hz * t;
-    const double scale = 1.0 - bl->impact_force_share + bl->impact_force_share * std::abs(reversal_force_kip_);
+    const double scale = (1.0 - bl->impact_force_share + bl->impact_force_share * std::abs(reversal_force_kip_)) *
+                         (1.0 - bl->impact_speed_share + bl->impact_speed_share * impact_speed_in_per_s_);
     force += last_direction_ * scale * std::exp(-t / bl->impact_decay_s) *
              (bl->impact_sin_kip * std::sin(phase) + bl->impact_cos_kip * std::cos(phase));
   }
@@ -641,6 +653,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
         strike_clock_s_ = -1.0;
       } else if (strike_clock_s_ < 0.0 && back >= strike) {
         strike_clock_s_ = 0.0;  // the clearance δ_i closed on this step (if it turns out a reversal)
+        strike_speed_in_per_s_ = speed;
       } else if (strike_clock_s_ >= 0.0 && back < strike) {
         strike_clock_s_ = -1.0;
       }
@@ -655,6 +668,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
         // step's travel it waits (impact_pending_).
         impact_pending_ = strike_clock_s_ < 0.0;
         reversal_time_s_ = impact_pending_ ? -1.0 : strike_clock_s_ - dt_s;
+        if (!impact_pending_) impact_speed_in_per_s_ = strike_speed_in_per_s_;
         turn_position_in_ = drum_position_in_;
         turn_force_kip_ = last_force_kip_;
         strike_clock_s_ = -1.0;
@@ -666,6 +680,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     if (impact_pending_ && e.backlash && reversal_travel_in_ >= e.backlash->impact_travel_in) {  // the clearance closes: the strike
       impact_pending_ = false;
       reversal_time_s_ = 0.0;
+      impact_speed_in_per_s_ = speed;
     }
     if (reversal_time_s_ >= 0.0) reversal_time_s_ += dt_s;
   }

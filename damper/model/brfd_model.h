@@ -211,6 +211,8 @@ class BrfdModel final : public DamperModel {
   double turn_position_in_ = 0.0;         ///< the furthest position of the last direction since its reversal, in
   double turn_force_kip_ = 0.0;           ///< the force on the step that furthest position was reached, kip
   double strike_clock_s_ = -1.0;          ///< time since the drum passed impact_travel_in back from the turn point (< 0: not), s
+  double strike_speed_in_per_s_ = 0.0;    ///< the drum speed on the step the drum passed impact_travel_in back, in/s
+  double impact_speed_in_per_s_ = 0.0;    ///< v_i of the ring now ringing: the drum speed where its clearance closed, in/s
   std::optional<double> drum_start_in_;   ///< drum displacement at the start of the run (first step), in
   std::optional<double> play_band_in_;    ///< x_b of backlash's drive-line play: the band's side, in
   double play_drum_in_ = 0.0;             ///< the drum displacement of the last step (travel in the play), in

@@ -27,7 +27,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     b.allow_only({"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "takeup_dip",
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
                   "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
-                  "impact_force_share", "impact_travel_in", "takeup_level_share", "takeup_onset_in"});
+                  "impact_force_share", "impact_travel_in", "takeup_level_share", "takeup_onset_in",
+                  "impact_speed_share"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -46,6 +47,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.impact_frequency_hz = b.get_double_in("impact_frequency_hz", 5.0, 1e-3, 1e3);
     x.impact_decay_s = b.get_double_in("impact_decay_s", 0.15, 1e-4, 1e4);
     x.impact_force_share = b.get_double_in("impact_force_share", 0.0, 0.0, 1.0);
+    x.impact_speed_share = b.get_double_in("impact_speed_share", 0.0, 0.0, 1.0);
     x.impact_travel_in = b.get_double_in("impact_travel_in", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
@@ -85,7 +87,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection a = s.section("asymmetry");
     a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share",
                   "band_speed_slope", "band_speed_exponent", "band_fade_per_kip_in", "band_fade_saturation_kip_in",
-                  "band_fade_recovery_per_s"});
+                  "band_fade_recovery_per_s", "stiction_share"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
@@ -98,6 +100,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_fade_per_kip_in = a.get_double_in("band_fade_per_kip_in", 0.0, -1.0, 1.0);
     x.band_fade_saturation_kip_in = a.get_double_in("band_fade_saturation_kip_in", 3000.0, 1e-3, 1e9);
     x.band_fade_recovery_per_s = a.get_double_in("band_fade_recovery_per_s", 0.0, 0.0, 100.0);
+    x.stiction_share = a.get_double_in("stiction_share", 1.0, 0.0, 1.0);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -105,7 +108,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     v.allow_only({"stribeck_exponent", "viscous_kip_s_per_in", "added_viscous_kip_s_per_in", "rate_slope",
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
                   "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s",
-                  "flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share"});
+                  "flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share", "rate_regularization",
+                  "rate_stiction_share"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -123,6 +127,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.flash_load_per_kip = v.get_double_in("flash_load_per_kip", 0.0, -1.0, 1.0);
     x.flash_speed_exponent = v.get_double_in("flash_speed_exponent", 0.5, 0.05, 5.0);
     x.flash_stiction_share = v.get_double_in("flash_stiction_share", 0.0, 0.0, 1.0);
+    x.rate_regularization = v.get_double_in("rate_regularization", 0.0, 0.0, 1.0);
+    x.rate_stiction_share = v.get_double_in("rate_stiction_share", 1.0, 0.0, 1.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
@@ -159,7 +165,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_spring_kip_per_in = p.get_double_in("band_spring_kip_per_in", 0.0, -20.0, 20.0);
     x.drum_start_share = p.get_double_in("drum_start_share", 0.0, 0.0, 1.0);
     x.band_spring_neg_ratio = p.get_double_in("band_spring_neg_ratio", 1.0, 0.0, 10.0);
-    x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -1.0, 1.0);
+    x.servo_backward_ratio = p.get_double_in("servo_backward_ratio", 1.0, -3.0, 3.0);
     x.brake_factor_per_kip = p.get_double_in("brake_factor_per_kip", 0.0, -0.5, 0.5);
     // stiction_share's name until it moved all three level factors (brake factor only, 91f30d6)
     if (p.has("brake_factor_stiction_share") && p.has("stiction_share"))
@@ -245,7 +251,7 @@ std::vector<EffectSpec> build_library() {
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel); impact ring: F += d exp(-t/tau_i) (A_s sin 2 pi f_i t + A_c cos 2 pi f_i t), "
-      "x ((1 - h_i) + h_i |F_rev|/1 kip), t since the drum travelled impact_travel_in past the reversal into direction d, F_rev the force before it",
+      "x ((1 - h_i) + h_i |F_rev|/1 kip) ((1 - h_v) + h_v |v_i|/1 in/s), t since the drum travelled impact_travel_in past the reversal into direction d, F_rev the force before it",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
@@ -265,7 +271,8 @@ std::vector<EffectSpec> build_library() {
        {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
        {"impact_travel_in", 0.0, 0.05, 0.0, 0.005, false},
        {"takeup_level_share", 0.0, 1.0, 1.0, 0.5, false, true},
-       {"takeup_onset_in", 0.0, 0.05, 0.0, 0.01, false}},
+       {"takeup_onset_in", 0.0, 0.05, 0.0, 0.01, false},
+       {"impact_speed_share", 0.0, 1.0, 0.0, 0.5, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -289,6 +296,7 @@ std::vector<EffectSpec> build_library() {
         b.impact_travel_in = t[17];
         b.takeup_level_share = t[18];
         b.takeup_onset_in = t[19];
+        b.impact_speed_share = t[20];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -297,7 +305,7 @@ std::vector<EffectSpec> build_library() {
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
                                    b.impact_decay_s, b.impact_force_share, b.impact_travel_in, b.takeup_level_share,
-                                   b.takeup_onset_in};
+                                   b.takeup_onset_in, b.impact_speed_share};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -376,7 +384,8 @@ std::vector<EffectSpec> build_library() {
        {"band_speed_exponent", 0.2, 3.0, 1.0, 0.5, true},
        {"band_fade_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
        {"band_fade_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
-       {"band_fade_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false}},
+       {"band_fade_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
+       {"stiction_share", 0.0, 1.0, 1.0, 0.5, false, true}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -391,13 +400,14 @@ std::vector<EffectSpec> build_library() {
         a.band_fade_per_kip_in = t[8];
         a.band_fade_saturation_kip_in = t[9];
         a.band_fade_recovery_per_s = t[10];
+        a.stiction_share = t[11];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
         return std::vector<double>{a.level,           a.stiffness,           a.stribeck_speed,
                                    a.viscous,         a.motion_stiffness,    a.forward_share,
                                    a.band_speed_slope, a.band_speed_exponent, a.band_fade_per_kip_in,
-                                   a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s};
+                                   a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s, a.stiction_share};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and power-law viscous force, rate-and-state levels",
@@ -420,7 +430,9 @@ std::vector<EffectSpec> build_library() {
        {"weakening_speed_in_per_s", 0.1, 10.0, 1.0, 1.0, true},
        {"flash_load_per_kip", -0.1, 0.3, 0.0, 0.05, false},
        {"flash_speed_exponent", 0.25, 2.0, 0.5, 1.0, true},
-       {"flash_stiction_share", 0.0, 1.0, 0.0, 1.0, false, true}},
+       {"flash_stiction_share", 0.0, 1.0, 0.0, 1.0, false, true},
+       {"rate_regularization", 0.0, 1.0, 0.0, 1.0, false, true},
+       {"rate_stiction_share", 0.0, 1.0, 1.0, 0.5, false, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -439,6 +451,8 @@ std::vector<EffectSpec> build_library() {
         v.flash_load_per_kip = t[12];
         v.flash_speed_exponent = t[13];
         v.flash_stiction_share = t[14];
+        v.rate_regularization = t[15];
+        v.rate_stiction_share = t[16];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
@@ -446,7 +460,8 @@ std::vector<EffectSpec> build_library() {
                                    v.reference_speed_in_per_s, v.memory_in, v.direct_slope,
                                    v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s, v.viscous_exponent,
                                    v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s,
-                                   v.flash_load_per_kip, v.flash_speed_exponent, v.flash_stiction_share};
+                                   v.flash_load_per_kip, v.flash_speed_exponent, v.flash_stiction_share,
+                                   v.rate_regularization, v.rate_stiction_share};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
@@ -498,7 +513,7 @@ std::vector<EffectSpec> build_library() {
        {"band_force_per_kip", -0.12, 0.12, 0.0, 0.03, false},
        {"drum_start_share", 0.0, 1.0, 0.0, 1.0, false},
        {"band_spring_neg_ratio", 0.2, 5.0, 1.0, 0.5, true},
-       {"servo_backward_ratio", -1.0, 1.0, 1.0, -1.0, false},
+       {"servo_backward_ratio", -2.5, 2.5, 1.0, -1.0, false},
        {"brake_factor_per_kip", -0.12, 0.12, 0.0, 0.03, false},
        {"stiction_share", 0.0, 1.0, 1.0, 1.0, false, true},
        {"stroke_wrap_fwd", -0.8, 2.0, 0.0, 0.2, false},
@@ -582,7 +597,8 @@ std::vector<EffectSpec> build_library() {
                     {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_stroke_in"},  // and by the previous stroke
                     // the band stiffness collapsed at the reversal and re-established with travel, the levels kept
                     {"takeup_dip", "takeup_length_in", "takeup_forward_share", "takeup_onset_in", "takeup_force_share=1", "takeup_level_share=0"},
-                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share", "impact_travel_in"},  // impact ring
+                    {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share", "impact_travel_in",
+                     "impact_speed_share"},  // impact ring
                     {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)
@@ -593,12 +609,17 @@ std::vector<EffectSpec> build_library() {
                      {"stribeck_speed", "viscous", "forward_share"},
                      // a band's own lining: its speed law; its fade (heat) or run-in with its own work
                      {"band_speed_slope", "band_speed_exponent", "forward_share"},
-                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share"}});
+                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share"},
+                     // the same on Eq. (4)'s Fc only, Fs kept: a level difference, a band's run-in or fade
+                     {"level", "forward_share", "stiction_share=0"},
+                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share", "stiction_share=0"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
                     {"stribeck_exponent", "stribeck_lag_s", "lag_viscous_share"},               // and the whole curve's lag
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2", "viscous_exponent"},  // power-law film
                     {"rate_slope", "reference_speed_in_per_s", "memory_in", "direct_slope"},    // rate and state
+                    // the steady-state rate law regularized, ln(1 + v/v_r), on Eq. (4)'s Fc only
+                    {"direct_slope", "reference_speed_in_per_s", "rate_regularization=1", "rate_stiction_share=0"},
                     {"flash_weakening", "weakening_speed_in_per_s"},                            // flash heating
                     {"flash_load_per_kip", "flash_speed_exponent"},                             // flash temperature by the load, on Fc
                     {"flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share=1"}});  // and on Fs alike

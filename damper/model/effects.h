@@ -71,7 +71,10 @@
 ///    (an impulse, a force step). It adds to the force and leaves the bristle state. The energy that
 ///    strikes grows with the band force released at the reversal (impact_force_share = h_i): the
 ///    amplitudes × ((1 − h_i) + h_i |F_rev|/1 kip), F_rev the force just before the reversal (an
-///    outside author's impact pair, blind set 24 t12, rang in proportion to it). Where it strikes
+///    outside author's impact pair, blind set 24 t12, rang in proportion to it), and with the drum's
+///    closing speed v_i where the clearance closes (impact_speed_share = h_v, eighteenth session: × ((1 −
+///    h_v) + h_v |v_i|/(1 in/s)); the impulse of an impact grows with the approach speed, Dubowsky &
+///    Freudenstein 1971; two outside authors rang by it, blind sets 25 t28 and 29 t13). Where it strikes
 ///    (impact_travel_in = δ_i, added in the seventeenth session): the ring starts when the drum has
 ///    travelled δ_i past the reversal, the clearance closed (t counts from there). At 8 Hz a strike
 ///    20 ms after the reversal is 60° of phase, and the delay from the reversal to a given travel
@@ -406,6 +409,9 @@ struct BacklashEffect {
   /// h_i in [0, 1]: the ring's amplitudes scale as (1 − h_i) + h_i |F_rev|/(1 kip), F_rev the band
   /// force just before the reversal (0: a set amplitude; 1: in proportion to the force released).
   double impact_force_share = 0.0;
+  /// h_v in [0, 1]: the ring's amplitudes also scale as (1 − h_v) + h_v |v_i|/(1 in/s), v_i the drum
+  /// speed where the clearance closes (the impact impulse grows with the closing speed); 0: not
+  double impact_speed_share = 0.0;
   /// δ_i: the ring starts when the drum has travelled δ_i past the reversal (the clearance closes), in;
   /// 0: at the reversal
   double impact_travel_in = 0.0;
@@ -480,6 +486,10 @@ struct AsymmetryEffect {
   double band_fade_per_kip_in = 0.0;
   double band_fade_saturation_kip_in = 3000.0;
   double band_fade_recovery_per_s = 0.0;
+  /// w_a in [0, 1]: where the level difference (level, band speed law, band fade) acts: on both
+  /// levels Fc and Fs (1, the default) or on Eq. (4)'s kinetic level Fc only (0), Fs × (1 − w_a (1 − φ_a))
+  /// with φ_a the direction's factor (eighteenth session, as self_energizing's stiction_share)
+  double stiction_share = 1.0;
   /// The level coefficient of one direction at sliding speed `speed` with that band's work `work`.
   double level_at(double speed, double work_kip_in) const {
     double a = level;
@@ -529,6 +539,13 @@ struct VelocityEffect {
   /// alone; 1: both levels, the friction g(v) at that speed as a whole)
   double flash_stiction_share = 0.0;
   static constexpr double kSpeedFloorInPerS = 0.01;  ///< v_f
+  /// c_r: the rate terms as s ln(c_r + v/v_r) — 0 the plain logarithm of the paper's rate-and-state
+  /// law, 1 its regularized form ln(1 + v/v_r), which stays finite at rest (Rice, Lapusta & Ranjith
+  /// 2001); eighteenth session
+  double rate_regularization = 0.0;
+  /// w_r in [0, 1]: where the rate factor φ (rate terms and flash weakening) acts: on both levels (1,
+  /// the default) or on Eq. (4)'s Fc only (0), Fs × (1 − w_r (1 − φ)); eighteenth session
+  double rate_stiction_share = 1.0;
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).
 struct PretensionEffect {
@@ -563,7 +580,9 @@ struct SelfEnergizingEffect {
   double band_force_per_kip = 0.0;  ///< χ: self-servo per kip of carried band force (absolute), 1/kip
   double drum_start_share = 0.0;  ///< r in [0, 1]: d = drum displacement − r × its value at the start
   double band_spring_neg_ratio = 1.0;  ///< ρ: the band spring's rate for d < 0 is ρ k_b (1: one linear spring)
-  /// ρ_s in [−1, 1]: the self-servo's gains η, χ moving backward are ρ_s × those moving forward (1: the
+  /// ρ_s in [−3, 3] (YAML; the diagnose search ±2.5, ±1 until the eighteenth session, when an outside
+  /// author's shoe factor normalized by each direction's own Fs needed −1.89): the self-servo's gains η, χ
+  /// moving backward are ρ_s × those moving forward (1: the
   /// same both ways; −1: energizing one way and de-energizing the other, a leading/trailing shoe)
   double servo_backward_ratio = 1.0;
   /// λ: the leading/trailing brake factor per kip of friction level, 1/kip: g ← g / (1 − λ g) moving
