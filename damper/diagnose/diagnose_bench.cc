@@ -303,30 +303,33 @@ std::vector<BrfdTest> bench_drives(const BrfdParams& base, double rate_hz) {
 std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
-    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+    c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
     c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
     return c;
   }
-  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "weak", {0.03, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // A slack band whose lining stays on the drum: the viscous force goes on through the slack.
-  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
-  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "viscous", {0.06, 0.0, 1.0, 1.0, 1.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // The grip lost at a reversal (half of it) and taken up over 0.08 in of travel, no slack.
-  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "takeup", {0.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.08, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // Drive-line play of 2 x 0.05 in, the band unloading over it (e^(-20 s)).
-  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "play", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.05, 20.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // The grip lost at a reversal in proportion to the stroke before it, up to 1.5 in (band stretch
   // stored over the stroke), the band force scaled with it.
-  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "by_stroke", {0.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.1, 1.0, 0.0, 0.0, 0.5, 1.5, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // An impact ring at each re-engagement: 0.3 kip, 8 Hz, decaying in 0.1 s, a quarter of it in phase
   // with the reversal's force step.
   // The band stiffness collapsed at each reversal (to a fifth, 0.015 in after the turn) and re-established over 0.12 in of travel,
   // the sliding levels kept (the gradual re-engagement of Cao et al. 2015).
-  c.push_back(library_case("backlash", "reengagement", {0.0, 0.0, 1.0, 1.0, 0.0, 0.8, 0.12, 1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 0.0, 0.015, 0.0}));
-  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("backlash", "reengagement", {0.0, 0.0, 1.0, 1.0, 0.0, 0.8, 0.12, 1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 0.0, 0.015, 0.0, 0.0}));
+  // A slack band (2 x 0.05 in) whose play's state before the record is not known: the first motion
+  // takes it up, and the slack acts from the first turn of the drum on.
+  c.push_back(library_case("backlash", "first_motion", {0.05, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("backlash", "impact", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.3, -0.1, 8.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.

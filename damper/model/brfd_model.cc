@@ -105,6 +105,7 @@ void BrfdModel::reset() {
   stroke_travel_in_ = previous_stroke_in_ = 0.0;
   last_direction_ = 0;
   drum_position_in_ = turn_position_in_ = turn_force_kip_ = 0.0;
+  play_opened_ = !(params_.effects.backlash && params_.effects.backlash->first_motion_engages >= 0.5);
   strike_clock_s_ = -1.0;
   strike_speed_in_per_s_ = impact_speed_in_per_s_ = 0.0;
   drum_start_in_.reset();
@@ -119,7 +120,9 @@ double BrfdModel::rotation_in(const DamperInput& in) const {
 
 void BrfdModel::set_bristle_in(double z_in) {
   z_in_ = held_z_in_ = z_in;
-  last_direction_ = z_in > 0.0 ? 1 : z_in < 0.0 ? -1 : 0;  // the band loaded by the last motion
+  // The band loaded by the last motion; with the play taken up by the first motion
+  // (first_motion_engages), not known: the first travel sets it.
+  last_direction_ = play_opened_ ? (z_in > 0.0 ? 1 : z_in < 0.0 ? -1 : 0) : 0;
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   // The slow element carries the same share of its capacity as the main one: k2 z2 = S(z)/σ0.
   slow_z_in_ = ts && ts->slow_share > 0.0
@@ -143,12 +146,17 @@ double BrfdModel::rate_factor(double speed) const {
   return std::max(0.2, (1.0 + direct + state) * flash);
 }
 
+double BrfdModel::slack_now_in() const {
+  return params_.effects.backlash && play_opened_ ? params_.effects.backlash->slack_in : 0.0;
+}
+
 double BrfdModel::engaged_share(double z) const {
   const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
-  if (!b || (b->slack_in == 0.0 && b->retension_in == 0.0)) return 1.0;
-  const double over = std::abs(z) - b->slack_in;
+  const double slack = slack_now_in();
+  if (!b || (slack == 0.0 && b->retension_in == 0.0)) return 1.0;
+  const double over = std::abs(z) - slack;
   if (over <= 0.0) return 0.0;
-  const double width = std::max(b->retension_in, 0.25 * b->slack_in);
+  const double width = std::max(b->retension_in, 0.25 * slack);
   return std::min(1.0, over / width);
 }
 
@@ -306,14 +314,14 @@ double BrfdModel::soft_spring(double over) const {
 
 double BrfdModel::spring_force_kip(double z) const {
   if (!has_effects_) return params_.lugre.sigma0_kip_per_in * z;
-  const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
+  const double slack = slack_now_in();
   const double over = soft_spring(std::max(std::abs(z) - slack, 0.0));  // backlash dead zone D(z)
   return z >= 0.0 ? stiffness(true) * over : -stiffness(false) * over;
 }
 
 double BrfdModel::bristle_for_force(double f) const {
   if (!has_effects_) return f / params_.lugre.sigma0_kip_per_in;
-  const double slack = params_.effects.backlash ? params_.effects.backlash->slack_in : 0.0;
+  const double slack = slack_now_in();
   const double eps = params_.effects.backlash ? params_.effects.backlash->retension_in : 0.0;
   auto over_of = [eps](double s) {  // inverse of h: s = h(u)
     if (eps <= 0.0) return s;
@@ -328,7 +336,7 @@ double BrfdModel::initial_bristle_for_force(double f) const {
   if (!has_effects_ || !params_.effects.backlash) return bristle_for_force(f);
   // A force within 10 % of the smaller kinetic friction may be a band still in its slack: the state
   // moves through the slack in proportion (a force of exactly 0 is the centre of the slack).
-  const double slack = params_.effects.backlash->slack_in;
+  const double slack = slack_now_in();
   const double engage = 0.1 * std::min(params_.lugre.fc_fwd_kip, params_.lugre.fc_bwd_kip);
   const double share = engage > 0.0 ? std::min(1.0, std::abs(f) / engage) : 1.0;
   const double z = bristle_for_force(f);
@@ -432,7 +440,7 @@ double BrfdModel::rate_in_frame(double z, double v, const Frame& f) const {
     rate = v * std::copysign(std::pow(std::abs(u), ts->dahl_exponent), u);
   }
   const BacklashEffect* b = params_.effects.backlash ? &*params_.effects.backlash : nullptr;
-  if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > b->slack_in) rate *= b->release_ratio;
+  if (b && b->release_ratio != 1.0 && v * z < 0.0 && std::abs(z) > slack_now_in()) rate *= b->release_ratio;
   rate *= f.motion;  // asymmetry: the band stiffness by the direction of motion
   if (f.relax > 0.0) rate -= f.relax * (z - (z >= 0.0 ? f.target_pos : f.target_neg));
   return rate;
@@ -630,7 +638,8 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
   const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
-  if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings())) || stroke_wrap) {
+  if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings() || (!play_opened_ && e.backlash->slack_in > 0.0))) ||
+      stroke_wrap) {
     // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the drum turned
     // back by kReversalTravelIn from the furthest point of its last direction (a hysteresis on the
     // drum position ∫v dt: rest jitter and a creeping stop are none); the travel since the reversal
@@ -660,6 +669,11 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
       if (strike_clock_s_ >= 0.0) strike_clock_s_ += dt_s;
       if (back >= BacklashEffect::kReversalTravelIn) {
         last_direction_ = -last_direction_;
+        if (!play_opened_) {  // the first turn of the drum: the slack acts from here, the band force kept
+          const double band = spring_force_kip(z_in_);
+          play_opened_ = true;
+          z_in_ = bristle_for_force(band);
+        }
         previous_stroke_in_ = std::max(stroke_travel_in_ + travel - back, 0.0);
         stroke_travel_in_ = back;
         reversal_travel_in_ = back;
@@ -728,7 +742,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double target_pos = f.target_pos, target_neg = f.target_neg;
   if (v == 0.0 && relax == 0.0) return force_in_frame(z_in_, v, f);
 
-  const double slack = e.backlash ? e.backlash->slack_in : 0.0;
+  const double slack = slack_now_in();
   const double k = speed / f.g;  // |v| / g(v)
   const double sp = f.tension * stiffness(true), sn = f.tension * stiffness(false);  // N_λ σ0±
   const bool shaped = e.transition_shape && e.transition_shape->nonlinear();

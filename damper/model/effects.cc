@@ -28,7 +28,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
                   "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
                   "impact_force_share", "impact_travel_in", "takeup_level_share", "takeup_onset_in",
-                  "impact_speed_share"});
+                  "impact_speed_share", "first_motion_engages"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -48,6 +48,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.impact_decay_s = b.get_double_in("impact_decay_s", 0.15, 1e-4, 1e4);
     x.impact_force_share = b.get_double_in("impact_force_share", 0.0, 0.0, 1.0);
     x.impact_speed_share = b.get_double_in("impact_speed_share", 0.0, 0.0, 1.0);
+    x.first_motion_engages = b.get_double_in("first_motion_engages", 0.0, 0.0, 1.0);
     x.impact_travel_in = b.get_double_in("impact_travel_in", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
@@ -269,10 +270,11 @@ std::vector<EffectSpec> build_library() {
        {"impact_frequency_hz", 1.0, 20.0, 5.0, 5.0, true},
        {"impact_decay_s", 0.02, 1.0, 0.15, 0.15, true},
        {"impact_force_share", 0.0, 1.0, 0.0, 0.5, false, true},
-       {"impact_travel_in", 0.0, 0.05, 0.0, 0.005, false},
+       {"impact_travel_in", 0.0, 0.3, 0.0, 0.005, false},
        {"takeup_level_share", 0.0, 1.0, 1.0, 0.5, false, true},
        {"takeup_onset_in", 0.0, 0.05, 0.0, 0.01, false},
-       {"impact_speed_share", 0.0, 1.0, 0.0, 0.5, false, true}},
+       {"impact_speed_share", 0.0, 1.0, 0.0, 0.5, false, true},
+       {"first_motion_engages", 0.0, 1.0, 0.0, 0.0, false, true}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -297,6 +299,7 @@ std::vector<EffectSpec> build_library() {
         b.takeup_level_share = t[18];
         b.takeup_onset_in = t[19];
         b.impact_speed_share = t[20];
+        b.first_motion_engages = t[21] >= 0.5 ? 1.0 : 0.0;
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -305,7 +308,7 @@ std::vector<EffectSpec> build_library() {
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
                                    b.impact_decay_s, b.impact_force_share, b.impact_travel_in, b.takeup_level_share,
-                                   b.takeup_onset_in, b.impact_speed_share};
+                                   b.takeup_onset_in, b.impact_speed_share, b.first_motion_engages};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -599,7 +602,16 @@ std::vector<EffectSpec> build_library() {
                     {"takeup_dip", "takeup_length_in", "takeup_forward_share", "takeup_onset_in", "takeup_force_share=1", "takeup_level_share=0"},
                     {"impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s", "impact_force_share", "impact_travel_in",
                      "impact_speed_share"},  // impact ring
-                    {"play_in", "play_release_per_in"}});  // drive-line play: the band sees the drum through a backlash operator
+                    // an impact pair: a clearance the band crosses at no force, and the strike that closes it rings
+                    {"slack_in", "slack_viscous_share", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
+                     "impact_travel_in", "impact_speed_share"},
+                    {"play_in", "play_release_per_in"},  // drive-line play: the band sees the drum through a backlash operator
+                    // the play's state before the record not known, taken up by the first motion: the
+                    // slack band, the take-up by band and the impact pair from the first turn of the drum on
+                    {"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "first_motion_engages=1"},
+                    {"takeup_dip", "takeup_length_in", "takeup_force_share", "takeup_forward_share", "takeup_onset_in", "first_motion_engages=1"},
+                    {"slack_in", "slack_viscous_share", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
+                     "impact_travel_in", "impact_speed_share", "first_motion_engages=1"}});
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)
                         {"time_constant_s", "extend_time_ratio"},  // slower (faster) one way

@@ -44,7 +44,10 @@
 ///    session; until then the drum speed passing 0.05 in/s against the last direction was one, and a
 ///    drum creeping back by 0.0008 in as it stopped, blind set 28 t02, collapsed the band for the whole
 ///    rest after it); at the start the last direction is the sign of the initial band force and s is
-///    large (engaged). The impact ring's clock and S_p count from the turn point alike.
+///    large (engaged) — or, with the play's state before the record not known (first_motion_engages =
+///    1, nineteenth session: an outside author armed the gap only after the first turn, blind set 29
+///    t13), the first travel sets it and the slack, the take-up and the ring act from the first turn
+///    of the drum on. The impact ring's clock and S_p count from the turn point alike.
 ///    The loss by the stroke before the reversal (takeup_stroke_in = L_s, added 2026-11-27 after
 ///    outside authors' collapse scaled by the energy stored in the taut band over the previous
 ///    stroke, blind set 23 t25, and lost motion proportional to it, set 22 t26): a × min(1, S_p/L_s),
@@ -412,6 +415,11 @@ struct BacklashEffect {
   /// h_v in [0, 1]: the ring's amplitudes also scale as (1 − h_v) + h_v |v_i|/(1 in/s), v_i the drum
   /// speed where the clearance closes (the impact impulse grows with the closing speed); 0: not
   double impact_speed_share = 0.0;
+  /// u_1 in {0, 1}: the play's state before the record. 0: closed on the side of the initial band
+  /// force, so a first motion against it is a reversal (the slack opens, the take-up and the ring
+  /// act); 1: not known, taken up by the first motion — the slack, the take-up and the ring act from
+  /// the first turn of the drum on (until then the band is engaged without play).
+  double first_motion_engages = 0.0;
   /// δ_i: the ring starts when the drum has travelled δ_i past the reversal (the clearance closes), in;
   /// 0: at the reversal
   double impact_travel_in = 0.0;

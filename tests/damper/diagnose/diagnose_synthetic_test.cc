@@ -546,7 +546,9 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     EXPECT_EQ(sub.regimes, want) << sub.subfamily;
   }
   EXPECT_EQ(se.back().regimes, effect_spec("self_energizing").regimes) << "the whole family";
-  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 7u);  // slack band, take-up, by stroke, re-engagement, impact, play, whole
+  // slack band, take-up, by stroke, re-engagement, impact, impact pair, play; the slack band, take-up
+  // and impact pair with the play taken up by the first motion; whole
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 11u);
 }
 
 // model-updated.yaml's LuGre block (identify mode) is fitted only on passive windows that identify

@@ -1651,6 +1651,59 @@ TEST(Effects, RestJitterAndACreepingStopAreNoReversal) {
   EXPECT_GT(collapse, 0.5 * held);  // the band's stiffness collapsed as the drum turned
 }
 
+// backlash's play taken up by the first motion (first_motion_engages = 1): the state of the play
+// before the record is not known, so the first motion is no reversal — a drum starting against the
+// held force unloads and reloads the band as the model without backlash does (no slack, no take-up),
+// and from the first turn of the drum on the force sits at zero over 2δ of travel after each
+// reversal, as BacklashHoldsTheForceNearZeroOverTwiceTheSlack. With u_1 = 0 (the play closed on the
+// side of the held force) the same first motion opens the slack. Fails with the flag ignored, the
+// slack opened at the start, or the band force not kept when the slack opens at the first turn.
+TEST(Effects, PlayTakenUpByTheFirstMotionActsFromTheFirstTurnOfTheDrum) {
+  const BrfdParams plain = coulomb_band();
+  const double slack = 0.06, held = 0.5 * plain.lugre.fc_fwd_kip, dt = 1e-4, v = 1.0;
+  for (const bool takeup : {false, true}) {
+    BrfdParams later = plain, closed = plain;
+    later.effects.backlash = BacklashEffect{takeup ? 0.0 : slack};
+    if (takeup) {
+      later.effects.backlash->takeup_dip = 0.6;
+      later.effects.backlash->takeup_length_in = 0.1;
+      later.effects.backlash->takeup_force_share = 1.0;  // the band force scaled at once
+    }
+    closed.effects.backlash = later.effects.backlash;
+    later.effects.backlash->first_motion_engages = 1.0;
+    BrfdModel m(later), c(closed), ref(plain);
+    m.set_bristle_in(m.initial_bristle_for_force(held));
+    c.set_bristle_in(c.initial_bristle_for_force(held));
+    ref.set_bristle_in(held / plain.lugre.sigma0_kip_per_in);
+    DamperInput in;
+    in.drum_vel_in_per_s = -v;  // 1 in against the held force
+    double worst = 0.0, closed_off = 0.0;
+    for (int i = 0; i < 10000; ++i) {
+      const double f = ref.step(in, dt);
+      worst = std::max(worst, std::abs(m.step(in, dt) - f));
+      closed_off = std::max(closed_off, std::abs(c.step(in, dt) - f));
+    }
+    EXPECT_LT(worst, 1e-9) << (takeup ? "take-up" : "slack");
+    EXPECT_GT(closed_off, 0.2 * plain.lugre.fc_fwd_kip) << (takeup ? "take-up" : "slack");  // u_1 = 0: a reversal at the start
+    in.drum_vel_in_per_s = v;  // the first turn: from here the play acts
+    double near_zero_travel = 0.0, below = 0.0, jump = 0.0, last = ref.step(in, 0.0);
+    for (int i = 0; i < 20000; ++i) {  // 2 in forward
+      const double f = m.step(in, dt), f_ref = ref.step(in, dt);
+      if (std::abs(f) < 1e-9) near_zero_travel += v * dt;
+      below = std::max(below, std::abs(f_ref - f));
+      if (!takeup) jump = std::max(jump, std::abs(f - last));  // the slack opens with the band force kept
+      last = f;
+    }
+    EXPECT_LT(jump, 0.02 * plain.lugre.fc_fwd_kip);
+    if (takeup) {
+      EXPECT_GT(below, 0.2 * plain.lugre.fc_fwd_kip);  // the grip lost at the first turn
+    } else {
+      EXPECT_NEAR(near_zero_travel, 2.0 * slack, 2.0 * v * dt);
+    }
+    EXPECT_NEAR(m.step(in, dt), plain.lugre.fc_fwd_kip, 1e-6);
+  }
+}
+
 // backlash's impact ring: from the step a reversal is seen (ReversalReference), the force is that of
 // the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t), d the new direction,
 // s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of the step before the drum reached its turn
