@@ -74,7 +74,7 @@ TEST(InMemoryLcm, StrictDecodeNamesChannelAndType) {
       *lcm, "FB", scratch, [&](force_feedback_t&, const RawMessage&) { ++ok; },
       [&](const DecodeError& e, const RawMessage&) { errors.push_back(e.what()); });
   messages::publish_message(*lcm, "FB", heartbeat(1));  // another type: hash mismatch
-  force_feedback_t fb;
+  force_feedback_t fb{};  // every field zero (hmac_length, seq, ...): lcm-gen types leave scalars uninitialized
   fb.run_id = "r";
   fb.num_dampers = 1;
   fb.force_kip = {1.0};
