@@ -49,6 +49,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.impact_force_share = b.get_double_in("impact_force_share", 0.0, 0.0, 1.0);
     x.impact_speed_share = b.get_double_in("impact_speed_share", 0.0, 0.0, 1.0);
     x.first_motion_engages = b.get_double_in("first_motion_engages", 0.0, 0.0, 1.0);
+    if (x.first_motion_engages != 0.0 && x.first_motion_engages != 1.0)
+      b.fail("first_motion_engages", "must be 0 (the play closed on the side of the initial force) or 1 (taken up by the first motion), got " +
+                                         std::to_string(x.first_motion_engages));
     x.impact_travel_in = b.get_double_in("impact_travel_in", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);

@@ -2125,6 +2125,16 @@ TEST(Effects, ConfigBlockRoundTrips) {
   EXPECT_THROW(load_brfd_params(dir + "/bad2.yaml"), common::ConfigError);
   std::ofstream(dir + "/bad3.yaml") << base_yaml << "effects:\n  pretension:\n    instant_share: 1.5\n";
   EXPECT_THROW(load_brfd_params(dir + "/bad3.yaml"), common::ConfigError);
+  // backlash's play state before the record is 0 or 1, nothing between.
+  std::ofstream(dir + "/bad4.yaml") << base_yaml << "effects:\n  backlash:\n    slack_in: 0.03\n    first_motion_engages: 0.3\n";
+  try {
+    load_brfd_params(dir + "/bad4.yaml");
+    ADD_FAILURE() << "first_motion_engages 0.3 accepted";
+  } catch (const common::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("effects.backlash.first_motion_engages"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir + "/first_motion.yaml") << base_yaml << "effects:\n  backlash:\n    slack_in: 0.03\n    first_motion_engages: 1\n";
+  EXPECT_EQ(load_brfd_params(dir + "/first_motion.yaml").effects.backlash->first_motion_engages, 1.0);
   // self_energizing's stiction_share under its old name (brake factor only, 91f30d6) still reads;
   // both names at once is an error naming the key.
   std::ofstream(dir + "/old_share.yaml") << base_yaml << "effects:\n  self_energizing:\n    brake_factor_stiction_share: 0.25\n";
