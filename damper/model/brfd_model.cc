@@ -44,6 +44,17 @@ double shape_slope(const TransitionShapeEffect& ts, double w) {
   return dahl * shaped_slope;
 }
 
+// One actuator's Eq. (4) term g u under pretension's band stretch law (clamp_stiffening_per_in =
+// beta, 1/in): the band's tension rises exponentially with its stretch (Fung's J-shaped law),
+// |g| (e^(beta t) - 1)/beta with t = g u/|g| the tightening travel (in); beta > 0 stiffens as the
+// band is drawn taut and softens as it is released, beta < 0 saturates. Slope |g| at t = 0.
+double stretched_clamp_term_kip(double term_kip, double gain_kip_per_in, double beta_per_in) {
+  const double g = std::abs(gain_kip_per_in);
+  if (g <= 0.0) return term_kip;
+  const double travel_in = term_kip / g;
+  return g * std::expm1(std::min(beta_per_in * travel_in, 30.0)) / beta_per_in;
+}
+
 }  // namespace
 
 BrfdModel::BrfdModel(const BrfdParams& params)
@@ -106,6 +117,7 @@ void BrfdModel::reset() {
   last_direction_ = 0;
   drum_position_in_ = turn_position_in_ = turn_force_kip_ = 0.0;
   play_opened_ = !(params_.effects.backlash && params_.effects.backlash->first_motion_engages >= 0.5);
+  load_slack_in_ = 0.0;
   strike_clock_s_ = -1.0;
   strike_speed_in_per_s_ = impact_speed_in_per_s_ = 0.0;
   drum_start_in_.reset();
@@ -132,11 +144,16 @@ void BrfdModel::set_bristle_in(double z_in) {
 
 double BrfdModel::rate_factor(double speed) const {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
-  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0 && ve->flash_weakening == 0.0)) return 1.0;
+  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0 && ve->flash_weakening == 0.0 && ve->peak_share == 0.0))
+    return 1.0;
   // Flash heating above v_w: × (1 − a_w (1 − v_w/|v|)).
-  const double flash = ve->flash_weakening != 0.0 && speed > ve->weakening_speed_in_per_s
-                           ? 1.0 - ve->flash_weakening * (1.0 - ve->weakening_speed_in_per_s / speed)
-                           : 1.0;
+  double flash = ve->flash_weakening != 0.0 && speed > ve->weakening_speed_in_per_s
+                     ? 1.0 - ve->flash_weakening * (1.0 - ve->weakening_speed_in_per_s / speed)
+                     : 1.0;
+  if (ve->peak_share != 0.0 && speed > 0.0) {  // a friction peak over log speed (Grosch): × (1 + A e^(−ln²(v/v_p)/(2w²)))
+    const double decades = std::log(speed / ve->peak_speed_in_per_s) / ve->peak_log_width;
+    flash *= 1.0 + ve->peak_share * std::exp(-0.5 * decades * decades);
+  }
   if (ve->rate_slope == 0.0 && ve->direct_slope == 0.0) return std::max(0.2, flash);
   const double now = speed + VelocityEffect::kSpeedFloorInPerS;
   const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
@@ -147,7 +164,7 @@ double BrfdModel::rate_factor(double speed) const {
 }
 
 double BrfdModel::slack_now_in() const {
-  return params_.effects.backlash && play_opened_ ? params_.effects.backlash->slack_in : 0.0;
+  return params_.effects.backlash && play_opened_ ? params_.effects.backlash->slack_in + load_slack_in_ : 0.0;
 }
 
 double BrfdModel::engaged_share(double z) const {
@@ -210,7 +227,19 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     const double late = e.actuator_lag ? e.actuator_lag->lagged_share : 0.0;  // (1 − a) x + a y
     const double x1 = in.actuator1_in + late * ((second ? resp1_in_ : lag1_in_) - in.actuator1_in);
     const double x2 = in.actuator2_in + late * ((second ? resp2_in_ : lag2_in_) - in.actuator2_in);
-    dfc = gain1 * (x1 - s.actuator1_initial_in) + gain2 * (x2 - s.actuator2_initial_in);
+    double term1 = gain1 * (x1 - s.actuator1_initial_in);
+    double term2 = gain2 * (x2 - s.actuator2_initial_in);
+    // pretension's band stretch law, per actuator: g u -> |g| (e^(beta t) - 1)/beta, t = g u/|g| the
+    // tightening travel (in) of that actuator's band (effects.h, clamp_stiffening_per_in).
+    if (e.pretension && e.pretension->clamp_stiffening_per_in != 0.0) {
+      term1 = stretched_clamp_term_kip(term1, gain1, e.pretension->clamp_stiffening_per_in);
+      term2 = stretched_clamp_term_kip(term2, gain2, e.pretension->clamp_stiffening_per_in);
+    }
+    dfc = term1 + term2;
+    // pretension's Fung law on the tension ratio: ΔFc → (b/γ)(e^(γ ΔFc/b) − 1) (effects.h)
+    if (e.pretension && e.pretension->clamp_stiffening_per_tension != 0.0 && b > 0.0)
+      dfc = b * std::expm1(std::min(e.pretension->clamp_stiffening_per_tension * dfc / b, 30.0)) /
+            e.pretension->clamp_stiffening_per_tension;
     // pretension's clamping law: ΔFc = k b (N^q − 1), N = 1 + ΔFc/b the tension ratio of Eq. (4).
     if (e.pretension && e.pretension->clamp_exponent != 1.0 && b > 0.0)
       dfc = b * (std::pow(std::max(1.0 + dfc / b, 0.01), e.pretension->clamp_exponent) - 1.0);
@@ -638,7 +667,8 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
   const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
-  if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings() || (!play_opened_ && e.backlash->slack_in > 0.0))) ||
+  if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings() || e.backlash->slack_per_kip > 0.0 ||
+                      (!play_opened_ && e.backlash->slack_in > 0.0))) ||
       stroke_wrap) {
     // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the drum turned
     // back by kReversalTravelIn from the furthest point of its last direction (a hysteresis on the
@@ -673,6 +703,19 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
           const double band = spring_force_kip(z_in_);
           play_opened_ = true;
           z_in_ = bristle_for_force(band);
+        }
+        if (e.backlash && e.backlash->slack_per_kip > 0.0) {  // the slack set by the load before the reversal
+          const double old_slack = slack_now_in();
+          const double band = spring_force_kip(z_in_);
+          load_slack_in_ = e.backlash->slack_per_kip * std::abs(turn_force_kip_);
+          const double new_slack = slack_now_in();
+          if (std::abs(z_in_) <= old_slack) {  // inside the dead zone: the travel made into it kept
+            const int entered_from = -last_direction_;  // the side the band was loaded on before the turn
+            z_in_ += entered_from * (new_slack - old_slack);
+            z_in_ = std::clamp(z_in_, -new_slack, new_slack);
+          } else {
+            z_in_ = bristle_for_force(band);
+          }
         }
         previous_stroke_in_ = std::max(stroke_travel_in_ + travel - back, 0.0);
         stroke_travel_in_ = back;

@@ -219,9 +219,10 @@ class BrfdModel final : public DamperModel {
   double rotation_in(const DamperInput& in) const;  ///< d of self_energizing (its drum_start_share)
   double engaged_share(double z) const;   ///< e(z) of backlash (1 without it)
   /// δ of backlash's slack as it acts now: 0 until the first turn of the drum where the play is
-  /// taken up by the first motion (first_motion_engages), slack_in otherwise
+  /// taken up by the first motion (first_motion_engages), slack_in (+ the load-dependent part) otherwise
   double slack_now_in() const;
   bool play_opened_ = true;  ///< the slack acts (false: first_motion_engages and no turn of the drum yet)
+  double load_slack_in_ = 0.0;  ///< κ_s |F_turn| of backlash's load-dependent slack, set at each reversal, in
   double rate_factor(double speed) const;  ///< φ of the velocity effect's log-rate levels (1 without it)
   /// transition_shape's sub-step bound: slope_to_steady_[i] = the largest |d(rate/|v|)/dw| of the
   /// shaped bristle law between w_i and the steady state w = 1, w = sign(v) y on the grid

@@ -28,7 +28,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "takeup_length_in", "takeup_force_share", "play_in", "play_release_per_in", "takeup_forward_share",
                   "takeup_stroke_in", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
                   "impact_force_share", "impact_travel_in", "takeup_level_share", "takeup_onset_in",
-                  "impact_speed_share", "first_motion_engages"});
+                  "impact_speed_share", "first_motion_engages", "slack_per_kip"});
     BacklashEffect x;
     x.slack_in = b.get_double_in("slack_in", 0.0, 2.0);
     x.retension_in = b.get_double_in("retension_in", 0.0, 0.0, 2.0);
@@ -53,6 +53,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
       b.fail("first_motion_engages", "must be 0 (the play closed on the side of the initial force) or 1 (taken up by the first motion), got " +
                                          std::to_string(x.first_motion_engages));
     x.impact_travel_in = b.get_double_in("impact_travel_in", 0.0, 0.0, 1.0);
+    x.slack_per_kip = b.get_double_in("slack_per_kip", 0.0, 0.0, 1.0);
     x.play_in = b.get_double_in("play_in", 0.0, 0.0, 2.0);
     x.play_release_per_in = b.get_double_in("play_release_per_in", 0.0, 0.0, 1000.0);
     e.backlash = x;
@@ -113,7 +114,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
                   "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s",
                   "flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share", "rate_regularization",
-                  "rate_stiction_share"});
+                  "rate_stiction_share", "peak_share", "peak_speed_in_per_s", "peak_log_width"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -133,13 +134,16 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.flash_stiction_share = v.get_double_in("flash_stiction_share", 0.0, 0.0, 1.0);
     x.rate_regularization = v.get_double_in("rate_regularization", 0.0, 0.0, 1.0);
     x.rate_stiction_share = v.get_double_in("rate_stiction_share", 1.0, 0.0, 1.0);
+    x.peak_share = v.get_double_in("peak_share", 0.0, -0.9, 5.0);
+    x.peak_speed_in_per_s = v.get_double_in("peak_speed_in_per_s", 1.0, 1e-3, 1e3);
+    x.peak_log_width = v.get_double_in("peak_log_width", 1.0, 0.05, 10.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
                   "wear_recovery_per_s", "wear_actuator_share", "clamp_gain", "actuator_coupling_kip_per_in2",
-                  "release_gain"});
+                  "release_gain", "clamp_stiffening_per_in", "clamp_stiffening_per_tension"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -151,6 +155,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.clamp_gain = p.get_double_in("clamp_gain", 1.0, 0.05, 20.0);
     x.release_gain = p.get_double_in("release_gain", 1.0, 0.05, 20.0);
     x.actuator_coupling_kip_per_in2 = p.get_double_in("actuator_coupling_kip_per_in2", 0.0, -1e6, 1e6);
+    x.clamp_stiffening_per_in = p.get_double_in("clamp_stiffening_per_in", 0.0, -200.0, 200.0);
+    x.clamp_stiffening_per_tension = p.get_double_in("clamp_stiffening_per_tension", 0.0, -20.0, 20.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -255,7 +261,8 @@ std::vector<EffectSpec> build_library() {
       "0.95), s = drum travel since the last reversal; "
       "drive-line play: the band sees x_b = play(x, play_in), v_b = v in contact, 0 in the play, where its force "
       "falls as exp(-play_release_per_in x travel); impact ring: F += d exp(-t/tau_i) (A_s sin 2 pi f_i t + A_c cos 2 pi f_i t), "
-      "x ((1 - h_i) + h_i |F_rev|/1 kip) ((1 - h_v) + h_v |v_i|/1 in/s), t since the drum travelled impact_travel_in past the reversal into direction d, F_rev the force before it",
+      "x ((1 - h_i) + h_i |F_rev|/1 kip) ((1 - h_v) + h_v |v_i|/1 in/s), t since the drum travelled impact_travel_in past the reversal into direction d, F_rev the force before it; "
+      "load-dependent slack: delta + slack_per_kip |F_turn| from each reversal on (F_turn the force at the turn point)",
       {{"slack_in", 0.0, 0.25, 0.0, 0.03, false},
        {"retension_in", 0.0, 0.25, 0.0, 0.02, false},
        {"stiffness_ratio", 1.0, 10.0, 1.0, 2.0, true},
@@ -277,7 +284,8 @@ std::vector<EffectSpec> build_library() {
        {"takeup_level_share", 0.0, 1.0, 1.0, 0.5, false, true},
        {"takeup_onset_in", 0.0, 0.05, 0.0, 0.01, false},
        {"impact_speed_share", 0.0, 1.0, 0.0, 0.5, false, true},
-       {"first_motion_engages", 0.0, 1.0, 0.0, 0.0, false, true}},
+       {"first_motion_engages", 0.0, 1.0, 0.0, 0.0, false, true},
+       {"slack_per_kip", 0.0, 0.03, 0.0, 0.003, false}},
       &ModelEffects::backlash,
       std::function<BacklashEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         BacklashEffect b;
@@ -303,6 +311,7 @@ std::vector<EffectSpec> build_library() {
         b.takeup_onset_in = t[19];
         b.impact_speed_share = t[20];
         b.first_motion_engages = t[21] >= 0.5 ? 1.0 : 0.0;
+        b.slack_per_kip = t[22];
         return b;
       }),
       std::function<std::vector<double>(const BacklashEffect&)>([](const BacklashEffect& b) {
@@ -311,7 +320,7 @@ std::vector<EffectSpec> build_library() {
                                    b.takeup_force_share, b.play_in, b.play_release_per_in, b.takeup_forward_share,
                                    b.takeup_stroke_in, b.impact_sin_kip, b.impact_cos_kip, b.impact_frequency_hz,
                                    b.impact_decay_s, b.impact_force_share, b.impact_travel_in, b.takeup_level_share,
-                                   b.takeup_onset_in, b.impact_speed_share, b.first_motion_engages};
+                                   b.takeup_onset_in, b.impact_speed_share, b.first_motion_engages, b.slack_per_kip};
       })));
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
@@ -421,7 +430,8 @@ std::vector<EffectSpec> build_library() {
       "the viscous force sees v + lambda_v (v lagged by tau_L - v); "
       "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
       "seen through the aging law over a slip distance D; levels x (1 - a_w (1 - v_w/|v|)) above v_w (flash heating), "
-      "Fc x phi_T, Fs x (1 - w_T + w_T phi_T), phi_T = 1 - c Fc |v|^n_T (flash temperature by the load) (config-only: + c_v |v| in g)",
+      "Fc x phi_T, Fs x (1 - w_T + w_T phi_T), phi_T = 1 - c Fc |v|^n_T (flash temperature by the load); "
+      "phi x (1 + A exp(-ln^2(|v|/v_p)/(2 w^2))) (a friction peak over log speed, Grosch) (config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"rate_slope", -0.8, 0.8, 0.0, -0.05, false},
@@ -438,7 +448,10 @@ std::vector<EffectSpec> build_library() {
        {"flash_speed_exponent", 0.25, 2.0, 0.5, 1.0, true},
        {"flash_stiction_share", 0.0, 1.0, 0.0, 1.0, false, true},
        {"rate_regularization", 0.0, 1.0, 0.0, 1.0, false, true},
-       {"rate_stiction_share", 0.0, 1.0, 1.0, 0.5, false, true}},
+       {"rate_stiction_share", 0.0, 1.0, 1.0, 0.5, false, true},
+       {"peak_share", -0.5, 0.8, 0.0, 0.15, false},
+       {"peak_speed_in_per_s", 0.05, 10.0, 1.0, 1.0, true},
+       {"peak_log_width", 0.2, 3.0, 1.0, 1.0, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -459,6 +472,9 @@ std::vector<EffectSpec> build_library() {
         v.flash_stiction_share = t[14];
         v.rate_regularization = t[15];
         v.rate_stiction_share = t[16];
+        v.peak_share = t[17];
+        v.peak_speed_in_per_s = t[18];
+        v.peak_log_width = t[19];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
@@ -467,12 +483,15 @@ std::vector<EffectSpec> build_library() {
                                    v.quadratic_viscous_kip_s2_per_in2, v.stribeck_lag_s, v.viscous_exponent,
                                    v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s,
                                    v.flash_load_per_kip, v.flash_speed_exponent, v.flash_stiction_share,
-                                   v.rate_regularization, v.rate_stiction_share};
+                                   v.rate_regularization, v.rate_stiction_share, v.peak_share,
+                                   v.peak_speed_in_per_s, v.peak_log_width};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
-      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), x release_gain where dFc < 0, + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k)",
+      "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), x release_gain where dFc < 0, + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k); "
+      "band stretch law per actuator: g_k u_k -> |g_k| (exp(beta t_k) - 1)/beta, t_k = g_k u_k/|g_k| (beta = clamp_stiffening_per_in, before q); "
+      "on the tension ratio: dFc -> (b/gamma) (exp(gamma dFc/b) - 1) (gamma = clamp_stiffening_per_tension, after beta, before q)",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
@@ -482,7 +501,9 @@ std::vector<EffectSpec> build_library() {
        {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true},
        {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true},
        {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false},
-       {"release_gain", 0.2, 3.0, 1.0, 1.5, true}},
+       {"release_gain", 0.2, 3.0, 1.0, 1.5, true},
+       {"clamp_stiffening_per_in", -60.0, 60.0, 0.0, 15.0, false},
+       {"clamp_stiffening_per_tension", -6.0, 6.0, 0.0, 1.5, false}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -496,12 +517,15 @@ std::vector<EffectSpec> build_library() {
         p.clamp_gain = t[7];
         p.actuator_coupling_kip_per_in2 = t[8];
         p.release_gain = t[9];
+        p.clamp_stiffening_per_in = t[10];
+        p.clamp_stiffening_per_tension = t[11];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
                                    p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain,
-                                   p.actuator_coupling_kip_per_in2, p.release_gain};
+                                   p.actuator_coupling_kip_per_in2, p.release_gain, p.clamp_stiffening_per_in,
+                                   p.clamp_stiffening_per_tension};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -609,6 +633,8 @@ std::vector<EffectSpec> build_library() {
                     {"slack_in", "slack_viscous_share", "impact_sin_kip", "impact_cos_kip", "impact_frequency_hz", "impact_decay_s",
                      "impact_travel_in", "impact_speed_share"},
                     {"play_in", "play_release_per_in"},  // drive-line play: the band sees the drum through a backlash operator
+                    // a slack that grows with the load before the reversal (the stretch of a tension element given back)
+                    {"slack_in", "slack_per_kip", "slack_viscous_share"},
                     // the play's state before the record not known, taken up by the first motion: the
                     // slack band, the take-up by band and the impact pair from the first turn of the drum on
                     {"slack_in", "retension_in", "stiffness_ratio", "release_ratio", "slack_viscous_share", "first_motion_engages=1"},
@@ -637,7 +663,9 @@ std::vector<EffectSpec> build_library() {
                     {"direct_slope", "reference_speed_in_per_s", "rate_regularization=1", "rate_stiction_share=0"},
                     {"flash_weakening", "weakening_speed_in_per_s"},                            // flash heating
                     {"flash_load_per_kip", "flash_speed_exponent"},                             // flash temperature by the load, on Fc
-                    {"flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share=1"}});  // and on Fs alike
+                    {"flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share=1"},   // and on Fs alike
+                    // a friction peak over log speed (viscoelastic lining, Grosch), on Fc
+                    {"peak_share", "peak_speed_in_per_s", "peak_log_width", "rate_stiction_share=0"}});
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
   mech("pretension", {{"fs_share", "instant_share"},
@@ -646,7 +674,10 @@ std::vector<EffectSpec> build_library() {
                       {"clamp_gain", "release_gain"},    // a kink at the pre-tension: one slope tightening, another releasing
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_recovery_per_s"},
                       {"wear_per_kip_in", "wear_saturation_kip_in", "wear_actuator_share=0"},
-                      {"actuator_coupling_kip_per_in2"}});  // the two actuators' clamping not additive
+                      {"actuator_coupling_kip_per_in2"},  // the two actuators' clamping not additive
+                      {"clamp_stiffening_per_in"},                 // each band's exponential stretch law (Fung)
+                      {"clamp_stiffening_per_in", "clamp_gain"},   // and its slope at the pre-tension
+                      {"clamp_stiffening_per_tension"}});          // the same law on the tension ratio
   // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the
   // run started (drum_start_share = 1, the convention of Eq. (4)'s x') or at the drum's zero (0).
   // Each mechanism that counts the rotation is tried from each origin; only the whole family frees

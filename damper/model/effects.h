@@ -48,6 +48,13 @@
 ///    1, nineteenth session: an outside author armed the gap only after the first turn, blind set 29
 ///    t13), the first travel sets it and the slack, the take-up and the ring act from the first turn
 ///    of the drum on. The impact ring's clock and S_p count from the turn point alike.
+///    A load-dependent slack (slack_per_kip = κ_s, in/kip, added in the twentieth session after an
+///    outside author's lost motion set by the tension before each reversal, blind set 30 t17, was
+///    named transition_shape): a tension element stretched by the load gives that stretch back as
+///    lost motion when the load reverses (tendon-sheath and cable drives, Kaneko et al. 1991; Do et
+///    al. 2014), so the slack's half-width is δ + κ_s |F_turn| from each reversal on, F_turn the force
+///    at the turn point; where the slack changes the band force is kept (a state inside the old dead
+///    zone keeps its place in it). Until the first reversal δ.
 ///    The loss by the stroke before the reversal (takeup_stroke_in = L_s, added 2026-11-27 after
 ///    outside authors' collapse scaled by the energy stored in the taut band over the previous
 ///    stroke, blind set 23 t25, and lost motion proportional to it, set 22 t26): a × min(1, S_p/L_s),
@@ -224,6 +231,14 @@
 ///    w_T = 1: the friction g(v) at that speed as a whole; Fs × (1 − w_T + w_T φ_T)); the two are
 ///    separate mechanisms. The weakening above has no load in it and scales both levels. Steady
 ///    sliding tested.
+///    A friction peak over the speed (peak_share = A, peak_speed_in_per_s = v_p, peak_log_width = w,
+///    added in the twentieth session after an outside author's Grosch bell, blind set 30 t16, was
+///    named self_energizing): every speed law above is monotone in |v| past the Stribeck dip, but
+///    the friction of a viscoelastic lining (polymer, rubber, resin-bonded pads) peaks where its
+///    loss modulus does, a bell over the logarithm of the speed, Grosch (1963) master curves:
+///      φ × (1 + A exp(−ln²(|v|/v_p) / (2 w²)))
+///    (A < 0 a dip; in the rate factor φ, so on Fc and on Fs by rate_stiction_share). Steady
+///    sliding tested.
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -272,6 +287,21 @@
 ///    authors' non-additive clamping, blind sets 21-23): the two actuators act on bands sharing the
 ///    drum, ΔFc += c u1 u2 with u_k = x_k − x'_k (after any actuator_lag); the seed paper neglects
 ///    this interaction. Steady sliding F = Fc(Eq. 4) + c u1 u2, tested.
+///    Band stretch law per actuator (clamp_stiffening_per_in = β, 1/in; added in the twentieth
+///    session after an outside author's Fung exponential clamping on each actuator's travel, blind
+///    set 30 t23, strong, was named none): each actuator draws its own band, whose tension rises
+///    with its stretch along a J-shaped (toe region) curve, Fung (1967): that actuator's term of
+///    Eq. (4), g_k u_k, becomes |g_k| (e^(β t_k) − 1)/β with t_k = g_k u_k/|g_k| its tightening
+///    travel in inches (slope g_k at the pre-tension; β > 0 stiffening as the band is drawn taut,
+///    softening where it is released; β < 0 saturating). The power law q above bends the SUM of
+///    the two terms relative to b, so its curvature per inch differs by the direction's b (about
+///    2:1 on the BRFD) and mixes the actuators; this one is per band, in inches, the same both
+///    ways. Applied before q, k, k_r and c. Steady sliding at a held travel, tested.
+///    The same law on the tension ratio (clamp_stiffening_per_tension = γ, dimensionless; twentieth
+///    session): ΔFc → (b/γ)(e^(γ ΔFc/b) − 1), the summed increment of Eq. (4) through an exponential
+///    in N − 1 = ΔFc/b — a band whose tension stiffens with its total stretch, the curvature per kip
+///    set by the direction's b (an outside author wrote it so, blind set 29 t11; with β alone, at its
+///    bound, that trial's gap after was 0.0415 against 0.0278 with q and k). After β, before q.
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
@@ -420,6 +450,9 @@ struct BacklashEffect {
   /// act); 1: not known, taken up by the first motion — the slack, the take-up and the ring act from
   /// the first turn of the drum on (until then the band is engaged without play).
   double first_motion_engages = 0.0;
+  /// κ_s: the slack grows with the load the band carried, δ + κ_s |F_turn| from each reversal on
+  /// (F_turn the force at the turn point), in/kip; 0: a set slack δ
+  double slack_per_kip = 0.0;
   /// δ_i: the ring starts when the drum has travelled δ_i past the reversal (the clearance closes), in;
   /// 0: at the reversal
   double impact_travel_in = 0.0;
@@ -554,6 +587,11 @@ struct VelocityEffect {
   /// w_r in [0, 1]: where the rate factor φ (rate terms and flash weakening) acts: on both levels (1,
   /// the default) or on Eq. (4)'s Fc only (0), Fs × (1 − w_r (1 − φ)); eighteenth session
   double rate_stiction_share = 1.0;
+  /// A: height of a friction peak over log speed (Grosch 1963), the rate factor φ ×
+  /// (1 + A exp(−ln²(|v|/v_p)/(2 w²))); 0 = none, < 0 a dip
+  double peak_share = 0.0;
+  double peak_speed_in_per_s = 1.0;  ///< v_p: speed of the peak, in/s (> 0)
+  double peak_log_width = 1.0;       ///< w: its width, in natural-log units of the speed (> 0)
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).
 struct PretensionEffect {
@@ -576,6 +614,12 @@ struct PretensionEffect {
   /// k_r: slope of the clamping law where the actuators release below the pre-tension (ΔFc < 0),
   /// relative to the slope tightening (1: Eq. 4's one slope; a bilinear law otherwise)
   double release_gain = 1.0;
+  /// β: each actuator's band stretch law, 1/in of its tightening travel t (Fung's exponential):
+  /// its Eq. (4) term g u → |g| (e^(β t) − 1)/β, t = g u/|g| (0: Eq. 4's linear law)
+  double clamp_stiffening_per_in = 0.0;
+  /// γ: Fung's exponential on the tension ratio, ΔFc → (b/γ) (e^(γ ΔFc/b) − 1) of the two actuators'
+  /// summed increment (0: Eq. 4's linear law), dimensionless
+  double clamp_stiffening_per_tension = 0.0;
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

@@ -548,7 +548,7 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
   EXPECT_EQ(se.back().regimes, effect_spec("self_energizing").regimes) << "the whole family";
   // slack band, take-up, by stroke, re-engagement, impact, impact pair, play; the slack band, take-up
   // and impact pair with the play taken up by the first motion; whole
-  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 11u);
+  EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 0).size(), 12u);
 }
 
 // model-updated.yaml's LuGre block (identify mode) is fitted only on passive windows that identify

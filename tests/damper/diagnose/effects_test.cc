@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 
 namespace damper {
 namespace {
@@ -775,6 +776,51 @@ TEST(Effects, FlashHeatingWeakensTheFrictionAboveItsSpeed) {
     const double g = phi * (fc + (fs - fc) * std::exp(-r * r));
     EXPECT_NEAR(std::abs(f - p.lugre.sigma2_kip_s_per_in * v), g, 1e-6 * g) << v;
   }
+}
+
+// A friction peak over log speed (Grosch 1963) in steady sliding, on Fc only (rate_stiction_share
+// 0) and on both levels (1): g = Fc ψ + (Fs ψ_s − Fc ψ) e^(−(v/v_s)²), ψ = 1 + A e^(−ln²(|v|/v_p)/(2w²)),
+// ψ_s = ψ or 1. The force at v_p is the highest of the speeds around it once the Stribeck excess is
+// gone. Fails with the peak ignored, with ln taken of v instead of |v|, or with the width squared
+// missing.
+TEST(Effects, FrictionPeakOverLogSpeedIsGroschsBell) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const double a = 0.3, vp = 2.0, w = 0.6;
+  for (const double stiction_share : {0.0, 1.0}) {
+    p.effects.velocity = VelocityEffect{};
+    p.effects.velocity->peak_share = a;
+    p.effects.velocity->peak_speed_in_per_s = vp;
+    p.effects.velocity->peak_log_width = w;
+    p.effects.velocity->rate_stiction_share = stiction_share;
+    for (double v : {0.3, 1.0, 2.0, 4.0, 9.0, -2.0, -5.0}) {
+      BrfdModel m(p);
+      DamperInput in;
+      in.drum_vel_in_per_s = v;
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) f = m.step(in, 1e-4);
+      const double speed = std::abs(v), l = std::log(speed / vp) / w;
+      const double psi = 1.0 + a * std::exp(-0.5 * l * l);
+      const double psi_s = 1.0 - stiction_share * (1.0 - psi);
+      const double fc = v > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = v > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+      const double r = speed / p.lugre.vs_in_per_s;
+      const double g = fc * psi + (fs * psi_s - fc * psi) * std::exp(-r * r);
+      EXPECT_NEAR(std::abs(f - p.lugre.sigma2_kip_s_per_in * v), g, 1e-6 * g) << v << " share " << stiction_share;
+    }
+  }
+  p.lugre.vs_in_per_s = 0.2;  // the Stribeck excess gone above 1 in/s
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  std::map<double, double> force;
+  for (double v : {1.0, 1.5, 2.0, 2.7, 4.0}) {
+    BrfdModel m(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    for (int i = 0; i < 20000; ++i) force[v] = m.step(in, 1e-4);
+  }
+  EXPECT_NEAR(force[2.0], p.lugre.fc_fwd_kip * (1.0 + a), 1e-6);
+  for (double v : {1.0, 1.5, 2.7, 4.0}) EXPECT_LT(force[v], force[2.0] - 0.01) << v;
 }
 
 // A passive base with a stiff bristle (σ0 = 3000 kip/in: it follows the friction law within ~1e-3
@@ -1704,6 +1750,42 @@ TEST(Effects, PlayTakenUpByTheFirstMotionActsFromTheFirstTurnOfTheDrum) {
   }
 }
 
+// backlash's load-dependent slack (slack_per_kip = κ_s): after each reversal the force sits at zero
+// over 2 (δ + κ_s |F_turn|) of drum travel, F_turn the force where the drum turned — the forward
+// level before the first turn, the (different) backward level before the second — and the force is
+// continuous where the slack changes. Fails with κ_s ignored, with the slack not reset at the second
+// reversal (the first turn's load kept), or with the band force not kept where the slack changes.
+TEST(Effects, LoadDependentSlackIsSetByTheForceAtEachTurn) {
+  const BrfdParams plain = coulomb_band();
+  ASSERT_GT(std::abs(plain.lugre.fc_fwd_kip - plain.lugre.fc_bwd_kip), 0.5);  // two different loads
+  const double slack = 0.01, kappa = 0.02, v = 1.0, dt = 1e-4;
+  BrfdParams p = plain;
+  p.effects.backlash = BacklashEffect{slack};
+  p.effects.backlash->slack_per_kip = kappa;
+  BrfdModel m(p);
+  m.set_bristle_in(m.bristle_for_force(plain.lugre.fc_fwd_kip));
+  DamperInput in;
+  double last = plain.lugre.fc_fwd_kip, jump = 0.0;
+  int stroke_index = 0;
+  for (const auto& [velocity, steps] : std::vector<std::pair<double, int>>{{v, 5000}, {-v, 10000}, {v, 10000}}) {
+    const double turn_force = last;  // the force where the drum turns (steady sliding before it)
+    in.drum_vel_in_per_s = velocity;
+    double near_zero_travel = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      const double f = m.step(in, dt);
+      if (std::abs(f) < 1e-9) near_zero_travel += v * dt;
+      jump = std::max(jump, std::abs(f - last));
+      last = f;
+    }
+    if (stroke_index > 0) {
+      EXPECT_NEAR(std::abs(turn_force), velocity < 0 ? plain.lugre.fc_fwd_kip : plain.lugre.fc_bwd_kip, 1e-3);
+      EXPECT_NEAR(near_zero_travel, 2.0 * (slack + kappa * std::abs(turn_force)), 3.0 * v * dt) << "stroke " << stroke_index;
+    }
+    ++stroke_index;
+  }
+  EXPECT_LT(jump, 0.05 * plain.lugre.fc_bwd_kip);
+}
+
 // backlash's impact ring: from the step a reversal is seen (ReversalReference), the force is that of
 // the model without it plus d s e^(−t/τ_i) (A_s sin 2π f_i t + A_c cos 2π f_i t), d the new direction,
 // s = (1 − h_i) + h_i |F_rev|/1 kip with F_rev the force of the step before the drum reached its turn
@@ -1850,6 +1932,82 @@ TEST(Effects, ActuatorCouplingAddsTheProductOfTheTwoTravels) {
         f = m.step(in, 1e-4);
       }
       EXPECT_NEAR(std::abs(f), fc + c * u1 * u2, 1e-6 * fc) << "v " << speed << " u " << u1 << ", " << u2;
+    }
+  }
+}
+
+// Pretension's band stretch law in steady sliding at a held setting (v >> v_s, σ1 = σ2 = 0): each
+// actuator's Eq. (4) term T_k (the model without the effect, that actuator alone moved) becomes
+// |g_k| (e^(β t_k) − 1)/β with |g_k| = |T_k/u_k| and t_k = T_k/|g_k| its tightening travel (Fung's
+// exponential band law): forward and backward alike, the two actuators each on its own travel.
+// Fails with β ignored, with the law applied to the sum of the terms, or with the travel in
+// actuator coordinates (u_k) instead of the tightening travel. And with γ on the tension ratio:
+// F = b + (b/γ)(e^(γ ΔFc/b) − 1), ΔFc the summed increment; fails with γ ignored.
+TEST(Effects, EachBandsStretchLawIsExponentialInItsOwnTightening) {
+  BrfdParams p = synthetic_base();
+  ASSERT_EQ(p.kind, DamperKind::semiactive);
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double beta = 30.0;  // 1/in
+  p.effects.pretension = PretensionEffect{};
+  p.effects.pretension->clamp_stiffening_per_in = beta;
+  BrfdParams plain = p;
+  plain.effects = {};
+  const BrfdModel without(plain);
+  for (const double speed : {4.0, -4.0}) {
+    for (const auto& [u1, u2] : std::vector<std::pair<double, double>>{{-0.02, -0.01}, {0.015, -0.02}, {-0.03, 0.0}}) {
+      DamperInput in;
+      in.drum_vel_in_per_s = speed;
+      in.actuator1_in = p.semiactive.actuator1_initial_in;
+      in.actuator2_in = p.semiactive.actuator2_initial_in;
+      const double b = without.kinetic_friction_kip(in);
+      double expected = b;
+      for (int k = 0; k < 2; ++k) {
+        const double u = k == 0 ? u1 : u2;
+        if (u == 0.0) continue;
+        DamperInput one = in;
+        (k == 0 ? one.actuator1_in : one.actuator2_in) += u;
+        const double term = without.kinetic_friction_kip(one) - b;
+        const double g = std::abs(term / u);
+        expected += g * std::expm1(beta * term / g) / beta;
+      }
+      in.actuator1_in += u1;
+      in.actuator2_in += u2;
+      const double linear = without.kinetic_friction_kip(in);
+      ASSERT_GT(std::abs(expected - linear), 0.1) << "the law departs from Eq. (4) here";
+      BrfdModel m(p);
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += speed * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      EXPECT_NEAR(std::abs(f), expected, 1e-6 * expected) << "v " << speed << " u " << u1 << ", " << u2;
+    }
+  }
+  // The same law on the tension ratio (clamp_stiffening_per_tension = γ): the summed increment
+  // ΔFc = Fc − b of Eq. (4) becomes (b/γ)(e^(γ ΔFc/b) − 1), b the direction's own level.
+  const double gamma = 1.5;
+  p.effects.pretension = PretensionEffect{};
+  p.effects.pretension->clamp_stiffening_per_tension = gamma;
+  for (const double speed : {4.0, -4.0}) {
+    for (const auto& [u1, u2] : std::vector<std::pair<double, double>>{{-0.02, -0.01}, {0.02, 0.0}}) {  // tightened, released
+      DamperInput in;
+      in.drum_vel_in_per_s = speed;
+      in.actuator1_in = p.semiactive.actuator1_initial_in;
+      in.actuator2_in = p.semiactive.actuator2_initial_in;
+      const double b = without.kinetic_friction_kip(in);
+      in.actuator1_in += u1;
+      in.actuator2_in += u2;
+      const double increment = without.kinetic_friction_kip(in) - b;
+      const double expected = b + b * std::expm1(gamma * increment / b) / gamma;
+      ASSERT_GT(std::abs(expected - b - increment), 0.1);
+      BrfdModel m(p);
+      double f = 0.0;
+      for (int i = 0; i < 20000; ++i) {
+        in.drum_disp_in += speed * 1e-4;
+        f = m.step(in, 1e-4);
+      }
+      EXPECT_NEAR(std::abs(f), expected, 1e-6 * expected) << "gamma: v " << speed << " u " << u1 << ", " << u2;
     }
   }
 }
