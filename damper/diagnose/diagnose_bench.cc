@@ -354,19 +354,19 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // The clamping rings after each actuator motion: a second-order response of period 1.1 s, ζ 0.3
   // (its envelope decays over 0.6 s, after the actuators stopped).
   c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));  // Stribeck speed and σ2 by direction
-  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));  // band stiffness by direction of motion
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));  // band stiffness by direction of motion
   // One band differs: the backward band's Stribeck speed × 1.6, the forward band as modelled.
-  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
   // One band's own lining: the forward band's friction rising as 0.1 |v|^0.5 (the backward band as
   // modelled); the backward band fading with its own friction work (30 % over ~40 kip·in), cooling
   // with a 5 s time constant.
-  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0, 1.0}));
-  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0}));
+  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0, 0.0}));
   // The forward band's run-in on Eq. (4)'s Fc only (Fs kept): its level rises 0.5 % per kip in of its own work, saturating.
-  c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0}));
+  c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0, 0.0}));
   c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
@@ -422,20 +422,23 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.3}));
   // The wrap built up over each stroke since the reversal, backward only, on Fc only: Fc (1 + 0.5 (1 − e^(−s/0.4 in))).
   c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4}));
-  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
-  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));  // a rounder transition than LuGre
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5}));  // a rounder transition than LuGre
   // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
-  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5}));
   // Elastic up to 30 % of the friction level, slip full from 61.5 % on (Dupont's z_max below the
   // steady state; unloading as LuGre).
-  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5, 0.0, 0.5}));
   // Dahl's own exponent: dF/dx = σ0 |1 − F/g sgn v|^2.5 sgn(·), a slow rounded approach to sliding.
-  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5}));
   // Two contact elements: half the friction carried by one 5 times softer (Maxwell-slip).
-  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5, 0.0, 0.5}));
   // LuGre's micro-damping fading with the speed (Canudas de Wit et al. 1995), σ1' = 2 kip s/in, v_d = 0.4 in/s.
-  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4}));
+  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4, 0.0, 0.5}));
+  // Bliman-Sorine's stiction peak in the travel domain: the fast element over-reaches by θ, a slow one
+  // pulls back over ℓ2 (blind set 31 t19)
+  c.push_back(library_case("transition_shape", "overshoot", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.7, 0.5}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

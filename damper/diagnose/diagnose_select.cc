@@ -271,7 +271,11 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
             format_significant(100.0 * o.max_rest_share, 2) + "%)";
     return g;
   }
-  if (check_signature && !signature_holds(c, o)) {
+  // The gate (3) is waived for a candidate that leaves only noise of a large discrepancy
+  // (DiagnoseOptions::signature_waiver_floor).
+  const bool whole = n > 0.0 && null_sse >= o.signature_waiver_excess * n * sigma2 &&
+                     null_sse - g.gain <= o.signature_waiver_floor * n * sigma2;
+  if (check_signature && !whole && !signature_holds(c, o)) {
     g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes (" +
             format_significant(100.0 * c.own_time_share, 2) + "% of the samples; density " +
             format_significant(signature_density(c), 2) + " < " + format_significant(o.signature_density, 2) + ")";

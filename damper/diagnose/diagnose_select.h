@@ -18,7 +18,8 @@
 ///       several records no record gets materially worse;
 ///   (3) >= signature_share of its held-out low-frequency gain sits in its own regimes
 ///       (EffectSpec::regimes), or its gain per sample there is >= signature_density times that
-///       elsewhere (signature_holds);
+///       elsewhere (signature_holds) — waived when the candidate leaves nothing but noise of a
+///       discrepancy of at least signature_waiver_excess σ² (DiagnoseOptions);
 /// the winner is the passing candidate with the largest Σg; it is named only when it removes at
 /// least min_explained_share of the excess (most of what is missing, not a part). Its confidence is the share of
 /// bootstrap resamples of the parts (with replacement) in which it is still the winner among the

@@ -106,6 +106,7 @@ void BrfdModel::reset() {
   reversal_force_kip_ = last_force_kip_ = 0.0;
   rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
+  overshoot_kip_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
@@ -140,6 +141,8 @@ void BrfdModel::set_bristle_in(double z_in) {
   slow_z_in_ = ts && ts->slow_share > 0.0
                    ? spring_force_kip(z_in) / (params_.lugre.sigma0_kip_per_in * ts->slow_stiffness_ratio)
                    : 0.0;
+  // The overshoot's slow element as at steady state: the held force shared (1 + θ) and −θ.
+  overshoot_kip_ = ts && ts->overshoot_share > 0.0 ? -ts->overshoot_share * spring_force_kip(z_in) : 0.0;
 }
 
 double BrfdModel::rate_factor(double speed) const {
@@ -392,7 +395,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
                                 : p.vs_in_per_s;
   const VelocityEffect* ve = e.velocity ? &*e.velocity : nullptr;
   const double r = (ve && ve->stribeck_lag_s > 0.0 ? stribeck_speed_ : std::abs(v)) / vs;
-  const double shape = ve ? std::exp(-std::pow(r, ve->stribeck_exponent)) : std::exp(-r * r);
+  // The Stribeck exponent n (velocity), × (1 ± a_n) by direction (asymmetry's stribeck_shape).
+  const double n = (ve ? ve->stribeck_exponent : 2.0) *
+                   (e.asymmetry && e.asymmetry->stribeck_shape != 0.0 ? e.asymmetry->factor(e.asymmetry->stribeck_shape, forward) : 1.0);
+  const double shape = n == 2.0 ? std::exp(-r * r) : std::exp(-std::pow(r, n));
   f.g = std::max(l.fc + (l.fs - l.fc) * shape + (ve ? ve->viscous_kip_s_per_in * std::abs(v) : 0.0), 1e-6);
   if (e.self_energizing && e.self_energizing->brake_factor_per_kip != 0.0) {
     // Leading/trailing brake factor by the friction level: g / (1 − λ g), ρ_s λ moving backward (effects.h).
@@ -416,6 +422,11 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
     f.band_spring_kip = e.self_energizing->band_spring_kip_per_in * (d < 0.0 ? e.self_energizing->band_spring_neg_ratio : 1.0) * d;
   }
   if (e.asymmetry) f.motion = e.asymmetry->factor(e.asymmetry->motion_stiffness, forward);
+  if (e.transition_shape && e.transition_shape->overshoot_share > 0.0) {
+    // Bliman-Sorine: the fast element's rate keeps the initial stiffness N σ0 (effects.h).
+    const double th = e.transition_shape->overshoot_share;
+    f.motion *= (1.0 + th * f.g / (f.tension * params_.lugre.sigma0_kip_per_in * e.transition_shape->overshoot_length_in)) / (1.0 + th);
+  }
   if (e.self_energizing && (e.self_energizing->band_force_share != 0.0 || e.self_energizing->band_force_per_kip != 0.0)) {
     // φ_s = 1 − η + (η/b + χ)|N S(z)|: η relative to the direction's passive b, χ per kip (effects.h).
     f.servo_share = e.self_energizing->band_force_share;
@@ -494,15 +505,17 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const double slack_viscous = params_.effects.backlash ? params_.effects.backlash->slack_viscous_share : 0.0;
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   const double slow = ts ? ts->slow_share : 0.0;  // transition_shape's slow contact element
-  const double band = (1.0 - slow) * spring_force_kip(z) +
-                      (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0);
+  const double overshoot = ts ? ts->overshoot_share : 0.0;  // Bliman-Sorine: fast (1 + θ), slow F_2
+  const double band = (1.0 + overshoot) * ((1.0 - slow) * spring_force_kip(z) +
+                                           (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0));
   // σ1 of Eq. (3), and transition_shape's micro-damping σ1' e^(−(v/v_d)²) (effects.h)
   double sigma1 = p.sigma1_kip_s_per_in;
   if (ts && ts->micro_damping_kip_s_per_in != 0.0) {
     const double r = v / ts->micro_damping_speed_in_per_s;
     sigma1 += ts->micro_damping_kip_s_per_in * std::exp(-r * r);
   }
-  return f.tension * band + (sigma1 != 0.0 ? engaged * sigma1 * rate_in_frame(z, v, f) : 0.0) +
+  return f.tension * band + (overshoot > 0.0 ? overshoot_kip_ : 0.0) +
+         (sigma1 != 0.0 ? engaged * sigma1 * rate_in_frame(z, v, f) : 0.0) +
          (engaged + (1.0 - engaged) * slack_viscous) * viscous * vv + f.band_spring_kip;
 }
 
@@ -780,6 +793,11 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     const double length = f.g / (f.tension * params_.lugre.sigma0_kip_per_in * e.transition_shape->slow_stiffness_ratio);
     const double steady = std::copysign(length, v);
     slow_z_in_ = steady + (slow_z_in_ - steady) * std::exp(-speed * dt_s / length);
+  }
+  if (e.transition_shape && e.transition_shape->overshoot_share > 0.0 && v != 0.0) {
+    // The overshoot's slow element: towards −θ g sgn v over ℓ2 of travel, exact over the step.
+    const double steady = -std::copysign(e.transition_shape->overshoot_share * f.g, v);
+    overshoot_kip_ = steady + (overshoot_kip_ - steady) * std::exp(-speed * dt_s / e.transition_shape->overshoot_length_in);
   }
   const double relax = f.relax;  // w / τ_r of residual_static, 1/s
   const double target_pos = f.target_pos, target_neg = f.target_neg;

@@ -196,6 +196,7 @@ class BrfdModel final : public DamperModel {
   double last_force_kip_ = 0.0;           ///< the friction force of the last step (without the rings), kip
   double rest_rate_per_s_ = -1.0;         ///< residual_static's rate over the current step (< 0: w/τ_r)
   double slow_z_in_ = 0.0;                ///< z2 of transition_shape's slow contact element, in
+  double overshoot_kip_ = 0.0;            ///< F_2 of transition_shape's Bliman-Sorine overshoot, kip
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double lagged_velocity_ = 0.0;          ///< v_L: the drum velocity through the same lag (signed), in/s

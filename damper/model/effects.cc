@@ -92,7 +92,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection a = s.section("asymmetry");
     a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share",
                   "band_speed_slope", "band_speed_exponent", "band_fade_per_kip_in", "band_fade_saturation_kip_in",
-                  "band_fade_recovery_per_s", "stiction_share"});
+                  "band_fade_recovery_per_s", "stiction_share", "stribeck_shape"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
@@ -106,6 +106,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_fade_saturation_kip_in = a.get_double_in("band_fade_saturation_kip_in", 3000.0, 1e-3, 1e9);
     x.band_fade_recovery_per_s = a.get_double_in("band_fade_recovery_per_s", 0.0, 0.0, 100.0);
     x.stiction_share = a.get_double_in("stiction_share", 1.0, 0.0, 1.0);
+    x.stribeck_shape = a.get_double_in("stribeck_shape", 0.0, -0.95, 5.0);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -191,7 +192,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection t = s.section("transition_shape");
     t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent", "slow_share",
                   "slow_stiffness_ratio", "breakaway_ramp_share", "micro_damping_kip_s_per_in",
-                  "micro_damping_speed_in_per_s"});
+                  "micro_damping_speed_in_per_s", "overshoot_share", "overshoot_length_in"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
@@ -200,7 +201,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                                                t.get_double_in("slow_stiffness_ratio", 1.0, 0.001, 100.0),
                                                t.get_double_in("breakaway_ramp_share", 1.0, 0.01, 1.0),
                                                t.get_double_in("micro_damping_kip_s_per_in", 0.0, 0.0, 100.0),
-                                               t.get_double_in("micro_damping_speed_in_per_s", 0.5, 1e-3, 1e3)};
+                                               t.get_double_in("micro_damping_speed_in_per_s", 0.5, 1e-3, 1e3),
+                                               t.get_double_in("overshoot_share", 0.0, 0.0, 10.0),
+                                               t.get_double_in("overshoot_length_in", 0.5, 1e-3, 1e3)};
   }
   return e;
 }
@@ -386,7 +389,7 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force; one band's speed law, fade or run-in",
       "Fc, Fs x (1 +- a_F), a_F = level + s_v |v|^m - f W0 (1 - exp(-W_dir/W0)), dW_dir/dt = |F v| [moving in dir] - k_f W_dir; "
-      "vs x (1 +- stribeck_speed), sigma2 x (1 +- viscous) forward/backward; "
+      "vs x (1 +- stribeck_speed), n x (1 +- stribeck_shape), sigma2 x (1 +- viscous) forward/backward; "
       "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward; "
       "each +-a split as +2ah forward / -2a(1-h) backward, h = forward_share (0.5: even)",
       {{"level", -0.5, 0.5, 0.0, 0.1, false},
@@ -400,7 +403,8 @@ std::vector<EffectSpec> build_library() {
        {"band_fade_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
        {"band_fade_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
        {"band_fade_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
-       {"stiction_share", 0.0, 1.0, 1.0, 0.5, false, true}},
+       {"stiction_share", 0.0, 1.0, 1.0, 0.5, false, true},
+       {"stribeck_shape", -0.45, 1.5, 0.0, 0.2, false}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -416,13 +420,15 @@ std::vector<EffectSpec> build_library() {
         a.band_fade_saturation_kip_in = t[9];
         a.band_fade_recovery_per_s = t[10];
         a.stiction_share = t[11];
+        a.stribeck_shape = t[12];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
         return std::vector<double>{a.level,           a.stiffness,           a.stribeck_speed,
                                    a.viscous,         a.motion_stiffness,    a.forward_share,
                                    a.band_speed_slope, a.band_speed_exponent, a.band_fade_per_kip_in,
-                                   a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s, a.stiction_share};
+                                   a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s, a.stiction_share,
+                                   a.stribeck_shape};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and power-law viscous force, rate-and-state levels",
@@ -591,15 +597,18 @@ std::vector<EffectSpec> build_library() {
        {"slow_stiffness_ratio", 0.03, 1.0, 1.0, 0.2, true},
        {"breakaway_ramp_share", 0.05, 1.0, 1.0, 0.45, true},
        {"micro_damping_kip_s_per_in", 0.0, 8.0, 0.0, 2.0, false},
-       {"micro_damping_speed_in_per_s", 0.05, 5.0, 0.5, 0.5, true}},
+       {"micro_damping_speed_in_per_s", 0.05, 5.0, 0.5, 0.5, true},
+       {"overshoot_share", 0.0, 2.5, 0.0, 0.5, false},
+       {"overshoot_length_in", 0.05, 3.0, 0.5, 0.4, true}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
-        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]};
+        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9], t[10]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
                                    a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio,
-                                   a.breakaway_ramp_share, a.micro_damping_kip_s_per_in, a.micro_damping_speed_in_per_s};
+                                   a.breakaway_ramp_share, a.micro_damping_kip_s_per_in, a.micro_damping_speed_in_per_s,
+                                   a.overshoot_share, a.overshoot_length_in};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -648,6 +657,7 @@ std::vector<EffectSpec> build_library() {
   // Each property by direction with where the difference sits (forward_share: both bands, or one).
   mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
                      {"stribeck_speed", "viscous", "forward_share"},
+                     {"stribeck_speed", "stribeck_shape", "forward_share"},  // each band its Stribeck curve
                      // a band's own lining: its speed law; its fade (heat) or run-in with its own work
                      {"band_speed_slope", "band_speed_exponent", "forward_share"},
                      {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share"},
@@ -701,7 +711,8 @@ std::vector<EffectSpec> build_library() {
   mech("transition_shape", {{"exponent", "dahl_exponent"},                  // bristle-law shape
                             {"elastic_unloading", "breakaway_ratio", "breakaway_ramp_share"},  // elasto-plastic pre-sliding
                             {"slow_share", "slow_stiffness_ratio"},         // two-stage contact
-                            {"micro_damping_kip_s_per_in", "micro_damping_speed_in_per_s"}});  // fading micro-damping
+                            {"micro_damping_kip_s_per_in", "micro_damping_speed_in_per_s"},  // fading micro-damping
+                            {"overshoot_share", "overshoot_length_in"}});  // Bliman-Sorine's stiction peak in travel
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

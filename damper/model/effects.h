@@ -393,6 +393,19 @@
 ///    sliding unchanged ((1 − φ) g + φ g). z2 is a state of step() (bristle_rate()/force_kip() read it).
 ///    (Added 2026-11-26: four blind Maxwell-slip shapes, several elements of different stiffness,
 ///    were outside the one-element family.)
+///    A stiction peak in the travel domain (overshoot_share = θ, overshoot_length_in = ℓ2; twenty-first
+///    session): Bliman & Sorine's second-order dry friction model (Bliman & Sorine 1995, Proc. 3rd
+///    ECC), the band force the sum of a fast element reaching (1 + θ) g and a slow one reaching −θ g
+///    over ℓ2 of drum travel,
+///      F = (1 + θ) N S(z) + F_2,  dF_2/dt = −|v| (F_2 + θ g sgn v) / ℓ2 (exact over the step),
+///      the fast bristle rate × r = (1 + θ g / (N σ0 ℓ2)) / (1 + θ),
+///    r chosen, as Bliman and Sorine do, so that the initial stiffness after a reversal stays N σ0.
+///    After each reversal the force rises as LuGre's, overshoots g and comes back to it over ℓ2:
+///    the friction memory of a contact in the travel domain, not the speed (LuGre's Stribeck peak);
+///    steady sliding unchanged ((1 + θ) g − θ g). The record's initial force is shared as at steady
+///    state (F_2 = −θ N S(z)). F_2 is a state of step(). (Set 31 t19: an outside author's
+///    Bliman-Sorine overshoot, strong, was named none: no library term reached it, transition_shape
+///    took 0 % of the excess.)
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -531,6 +544,9 @@ struct AsymmetryEffect {
   /// levels Fc and Fs (1, the default) or on Eq. (4)'s kinetic level Fc only (0), Fs × (1 − w_a (1 − φ_a))
   /// with φ_a the direction's factor (eighteenth session, as self_energizing's stiction_share)
   double stiction_share = 1.0;
+  /// a_n: the Stribeck curve's exponent n × (1 ± a_n) by direction, exp(−|v/v_s|^(n (1 ± a_n))): each
+  /// band's lining its own transition from static to kinetic friction (twenty-first session)
+  double stribeck_shape = 0.0;
   /// The level coefficient of one direction at sliding speed `speed` with that band's work `work`.
   double level_at(double speed, double work_kip_in) const {
     double a = level;
@@ -665,6 +681,10 @@ struct TransitionShapeEffect {
   /// (Canudas de Wit et al. 1995), kip s/in; 0: none
   double micro_damping_kip_s_per_in = 0.0;
   double micro_damping_speed_in_per_s = 0.5;  ///< v_d: the speed over which σ1' fades, in/s
+  /// θ >= 0: Bliman-Sorine's overshoot, the share of g by which the fast element over-reaches and a
+  /// slow one, over overshoot_length_in of travel, pulls back (file comment); 0: none
+  double overshoot_share = 0.0;
+  double overshoot_length_in = 0.5;  ///< ℓ2: the travel over which the overshoot decays, in
   /// The force ratio at which the elasto-plastic slip gate reaches 1 (Dupont et al. 2002's z_max/z_ss).
   double breakaway_full_slip_ratio() const { return breakaway_ratio + breakaway_ramp_share * (1.0 - breakaway_ratio); }
   bool nonlinear() const {

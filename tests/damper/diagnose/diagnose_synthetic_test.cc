@@ -418,6 +418,38 @@ TEST(DiagnoseSelection, AResampleDrawingARecordAsItsWorsePartStillCountsTheChoic
   EXPECT_EQ(choice_confidence({c}, part_record, 2, sigma2, o, 7u)[0], 0.0);
 }
 
+// Gate (3) is waived for a candidate that leaves nothing but noise of a large discrepancy: held-out
+// mean square within 1.2 σ² where the model without it is at least 4 σ² (blind set 30 t17: a slack
+// that biased the passive window's base everywhere; its backlash left 0.0262 kip of a 0.345 kip
+// residual, noise 0.0275, with 10 % of its gain in its regimes). Not for a candidate that leaves
+// 10 σ², nor where the model without it is already near the noise (3 σ²: a 'none' record).
+TEST(DiagnoseSelection, SignatureGateIsWaivedOnlyForAWholeExplanation) {
+  const DiagnoseOptions o;
+  const std::vector<std::size_t> part_record{0, 0, 1, 1};
+  auto score = [](double null_ms, double after_ms) {
+    CandidateScore c;
+    c.effect = "backlash";
+    c.part_samples = std::vector<std::size_t>(4, 1000);
+    c.part_null_kip2 = std::vector<double>(4, 1000.0 * null_ms);
+    c.part_gain_kip2 = std::vector<double>(4, 1000.0 * (null_ms - after_ms));
+    c.part_noise_kip2 = std::vector<double>(4, 1e-9);
+    c.signature_share = 0.1;  // its gain mostly off its own regimes
+    c.own_time_share = 0.22;
+    c.passes = true;
+    return c;
+  };
+  const double sigma2 = 0.0275 * 0.0275;
+  EXPECT_GE(choice_confidence({score(158.0 * sigma2, 0.91 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.99);
+  EXPECT_EQ(choice_confidence({score(158.0 * sigma2, 10.0 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
+  EXPECT_EQ(choice_confidence({score(3.0 * sigma2, 1.0 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
+  // ... and its signature holding, every one is chosen.
+  for (const double after : {0.91, 10.0}) {
+    CandidateScore c = score(158.0 * sigma2, after * sigma2);
+    c.signature_share = 0.9;
+    EXPECT_GE(choice_confidence({c}, part_record, 2, sigma2, o, 7u)[0], 0.99) << after;
+  }
+}
+
 // Identifiability of the rest level: the counting of distinct rests and the sub-families it frees.
 TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests) {
   EXPECT_EQ(distinct_rest_levels({}), 0);

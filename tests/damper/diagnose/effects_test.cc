@@ -462,6 +462,45 @@ TEST(Effects, MicroDampingFadesWithTheSpeedAndVanishesInSteadySliding) {
   }
 }
 
+// transition_shape's overshoot (Bliman & Sorine 1995): the band force is two first-order elements in
+// the drum travel s, a fast one x1 towards (1 + θ) g sgn v over l1 = (1 + θ) g / (σ0 + θ g/ℓ2) and a
+// slow one x2 towards −θ g sgn v over ℓ2 — the initial stiffness σ0, a peak above g, back to g. Coulomb
+// band (Fs = Fc, σ1 = σ2 = 0), from F = 0 forward, then reversed at the same speed: each element from
+// where it stood, towards the backward level.
+TEST(Effects, BlimanSorineOvershootIsTwoElementsInTheTravel) {
+  BrfdParams p = coulomb_band();
+  const double s0 = p.lugre.sigma0_kip_per_in, th = 0.8, l2 = 0.4, v = 0.5, dt = 1e-3;
+  p.effects.transition_shape = TransitionShapeEffect{};
+  p.effects.transition_shape->overshoot_share = th;
+  p.effects.transition_shape->overshoot_length_in = l2;
+  BrfdModel m(p);
+  DamperInput in;
+  double x1 = 0.0, x2 = 0.0;  // the two elements at the start of each stroke
+  for (const double dir : {1.0, -1.0}) {
+    const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+    const double l1 = (1.0 + th) * g / (s0 + th * g / l2);
+    in.drum_vel_in_per_s = dir * v;
+    double worst = 0.0, peak = 0.0, f = 0.0, first = 0.0;
+    const int steps = static_cast<int>(std::round(10.0 * l2 / (v * dt)));
+    for (int i = 1; i <= steps; ++i) {
+      in.drum_disp_in += dir * v * dt;
+      f = m.step(in, dt);
+      const double s = i * v * dt;
+      const double a1 = dir * (1.0 + th) * g, a2 = -dir * th * g;
+      const double want = a1 + (x1 - a1) * std::exp(-s / l1) + a2 + (x2 - a2) * std::exp(-s / l2);
+      worst = std::max(worst, std::abs(f - want));
+      peak = std::max(peak, dir * f);
+      if (i == 1) first = f;
+    }
+    EXPECT_LT(worst, 1e-9) << "dir " << dir;
+    EXPECT_GT(peak, 1.1 * g) << "dir " << dir << ": the force overshoots the sliding level";
+    EXPECT_NEAR(f, dir * g, 2e-4 * g) << "dir " << dir << ": back to g in sliding";
+    if (dir > 0) EXPECT_NEAR(first / (v * dt), s0, 0.02 * s0) << "the initial stiffness stays σ0";
+    x1 = dir * (1.0 + th) * g + (x1 - dir * (1.0 + th) * g) * std::exp(-steps * v * dt / l1);
+    x2 = -dir * th * g + (x2 + dir * th * g) * std::exp(-steps * v * dt / l2);
+  }
+}
+
 // asymmetry's motion_stiffness a_m, with σ1 = σ2 = 0 and Fs = Fc: from F = 0 the force rises as
 // Fc (1 − exp(−σ0 (1 ± a_m) x/Fc)), forward + and backward −, to the same sliding level.
 TEST(Effects, BandStiffnessByDirectionOfMotionFollowsItsClosedForm) {
@@ -2167,6 +2206,43 @@ TEST(Effects, AsymmetryScalesLevelsStribeckSpeedAndViscousForceByDirection) {
     BrfdParams q = p;
     q.effects.asymmetry = AsymmetryEffect{aF, 0.3};
     EXPECT_GT(std::abs(steady_sliding_force_kip(q, v) - expected), 1e-3) << v;
+  }
+}
+
+// Each band its own Stribeck curve (stribeck_shape a_n, with a_v): in steady sliding F = ±(Fc + (Fs − Fc)
+// exp(−(v/(v_s (1 ± a_v)))^(2 (1 ± a_n)))) + σ2 v, the exponent of Eq. (2) by direction, also on top of
+// velocity's exponent n (then n (1 ± a_n)). With forward_share 1 the backward band is the model's own.
+TEST(Effects, StribeckExponentByDirectionShapesEachBandsCurve) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.4;
+  const double an = 0.6, av = 0.2;
+  for (const double n : {2.0, 1.5}) {
+    for (const double h : {0.5, 1.0}) {
+      p.effects.asymmetry = AsymmetryEffect{0.0, 0.0, av, 0.0, 0.0, h};
+      p.effects.asymmetry->stribeck_shape = an;
+      p.effects.velocity.reset();
+      if (n != 2.0) {
+        p.effects.velocity = VelocityEffect{};
+        p.effects.velocity->stribeck_exponent = n;
+      }
+      for (double v : {-2.0, -1.0, -0.5, 0.5, 1.0, 2.0}) {
+        const bool fwd = v > 0.0;
+        auto side = [&](double a) { return fwd ? 1.0 + 2.0 * a * h : 1.0 - 2.0 * a * (1.0 - h); };
+        const double fc = fwd ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+        const double fs = fwd ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+        const double r = std::abs(v) / (p.lugre.vs_in_per_s * side(av));
+        const double expected = (fwd ? 1.0 : -1.0) * (fc + (fs - fc) * std::exp(-std::pow(r, n * side(an)))) +
+                                p.lugre.sigma2_kip_s_per_in * v;
+        EXPECT_NEAR(steady_sliding_force_kip(p, v), expected, 1e-6 * std::abs(expected)) << "n " << n << " h " << h << " v " << v;
+        if (h == 0.5 && std::abs(v) == 0.5) {  // the exponent's part: off it, another force
+          BrfdParams q = p;
+          q.effects.asymmetry->stribeck_shape = 0.0;
+          EXPECT_GT(std::abs(steady_sliding_force_kip(q, v) - expected), 1e-3) << "n " << n << " v " << v;
+        }
+      }
+    }
   }
 }
 
