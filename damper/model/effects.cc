@@ -585,10 +585,11 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
       "shape of the stick-to-slip transition: sharper or smoother (Dahl exponent), an elastic range before "
-      "breakaway, elastic unloading after a reversal (elasto-plastic / Maxwell-slip pre-sliding)",
+      "breakaway, elastic unloading after a reversal (elasto-plastic / Maxwell-slip pre-sliding), a stiction "
+      "overshoot over the travel after each reversal (Bliman-Sorine)",
       "y = N S(z)/g; dz/dt = v - |v| sign(y) |y|^exponent e(|y|) (1 - u [y v < 0]), e = 0 below breakaway_ratio b, "
       "rising as a half sine to 1 at |y| = b + breakaway_ramp_share (1 - b) (LuGre: exponent = 1, u = 0, "
-      "breakaway_ratio = 0)",
+      "breakaway_ratio = 0); F = (1 + overshoot_share) N S(z) + F2, F2 -> -overshoot_share g sgn v over overshoot_length_in",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},

@@ -162,6 +162,7 @@
 ///      friction levels Fc, Fs (and ΔFc) × (1 + a_F) forward, × (1 − a_F) backward;
 ///      band stiffness σ0 × (1 + a_σ sign(z)) (the other band is taut for z < 0);
 ///      Stribeck speed v_s × (1 ± a_v) and viscous σ2 × (1 ± a_2), forward + / backward −;
+///      Eq. (2)'s exponent n × (1 ± a_n) (stribeck_shape = a_n: each band's own Stribeck curve);
 ///      the band force builds with the stiffness σ0 (1 ± a_m) by the direction of motion
 ///      (motion_stiffness = a_m: dz/dt × (1 ± a_m), so dF/dx = σ0 (1 ± a_m)(1 − F/g sgn v) for
 ///      F = σ0 z; steady sliding unchanged. Added 2026-11-26: two outside authors wrote a band
