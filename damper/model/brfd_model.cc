@@ -506,8 +506,10 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const TransitionShapeEffect* ts = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   const double slow = ts ? ts->slow_share : 0.0;  // transition_shape's slow contact element
   const double overshoot = ts ? ts->overshoot_share : 0.0;  // Bliman-Sorine: fast (1 + θ), slow F_2
-  const double band = (1.0 + overshoot) * ((1.0 - slow) * spring_force_kip(z) +
-                                           (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0));
+  double band = (1.0 + overshoot) * ((1.0 - slow) * spring_force_kip(z) +
+                                     (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0));
+  // The stiction bump since the reversal, on the band loaded in the direction of motion (effects.h).
+  if (ts && ts->stroke_peak_share != 0.0 && band * v > 0.0) band *= 1.0 + ts->stroke_peak_share * ts->stroke_peak(stroke_travel_in_);
   // σ1 of Eq. (3), and transition_shape's micro-damping σ1' e^(−(v/v_d)²) (effects.h)
   double sigma1 = p.sigma1_kip_s_per_in;
   if (ts && ts->micro_damping_kip_s_per_in != 0.0) {
@@ -680,10 +682,12 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
   const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
+  const bool stroke_peak = e.transition_shape && e.transition_shape->stroke_peak_share != 0.0;
   if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings() || e.backlash->slack_per_kip > 0.0 ||
                       (!play_opened_ && e.backlash->slack_in > 0.0))) ||
-      stroke_wrap) {
-    // backlash's take-up and impact ring, self_energizing's stroke wrap: a reversal is the drum turned
+      stroke_wrap || stroke_peak) {
+    // backlash's take-up and impact ring, self_energizing's stroke wrap, transition_shape's stroke
+    // peak: a reversal is the drum turned
     // back by kReversalTravelIn from the furthest point of its last direction (a hysteresis on the
     // drum position ∫v dt: rest jitter and a creeping stop are none); the travel since the reversal
     // counts from that turn point (effects.h).

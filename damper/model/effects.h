@@ -407,6 +407,22 @@
 ///    state (F_2 = −θ N S(z)). F_2 is a state of step(). (Set 31 t19: an outside author's
 ///    Bliman-Sorine overshoot, strong, was named none: no library term reached it, transition_shape
 ///    took 0 % of the excess.)
+///    A stiction bump in the travel since the reversal (stroke_peak_share = p, stroke_peak_length_in
+///    = ℓ_p, stroke_peak_rise_share = r; twenty-second session): the band force, once loaded in the
+///    new direction of motion (S(z) v > 0), × (1 + p B(s)),
+///      B(s) = (e^(−s/ℓ_p) − e^(−s/(r ℓ_p))) / B_max,  B_max = r^(r/(1−r)) (1 − r),
+///    s the drum travel since the reversal (the turn point, as backlash's take-up counts it; the first
+///    stroke counts from the record's start, the band having held before it): zero at the reversal,
+///    a peak of p at s* = r ℓ_p ln(1/r)/(1 − r), gone in steady sliding. The junctions
+///    that formed while the band held are sheared through over a slip distance (the travel-domain
+///    stiction peak of Bliman & Sorine 1995's second-order model, and the slip-distance memory of
+///    rate-and-state friction, Rice & Ruina 1983), on the band's own (soft) bristle force, which the
+///    overshoot above, a fast element of the bristle's length, is not: set 32 t02's bump (strong, the
+///    bristle force × (1 + p B(s)) over 0.05 and 0.13 in) was named none, transition_shape 37 % of
+///    the excess, the overshoot 4 %; its author's truth entered as the overshoot with a free fast
+///    length (tried, not kept) replayed it 35 times the noise off, because the BRFD's bristle takes
+///    about 0.3 in to reverse; entered as this term it replays the records at 0.032 and 0.028 kip RMS
+///    (noise 0.027).
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -686,6 +702,16 @@ struct TransitionShapeEffect {
   /// slow one, over overshoot_length_in of travel, pulls back (file comment); 0: none
   double overshoot_share = 0.0;
   double overshoot_length_in = 0.5;  ///< ℓ2: the travel over which the overshoot decays, in
+  /// p >= 0: a stiction bump in the travel since the reversal, the loaded band force × (1 + p B(s)),
+  /// B peaking at 1 (file comment); 0: none
+  double stroke_peak_share = 0.0;
+  double stroke_peak_length_in = 0.15;  ///< ℓ_p: the travel over which the bump falls, in
+  double stroke_peak_rise_share = 0.4;  ///< r in (0, 1): it rises over r ℓ_p
+  /// B(s) = (e^(−s/ℓ_p) − e^(−s/(r ℓ_p))) / B_max, B_max = r^(r/(1−r)) (1 − r) its peak, at s* = r ℓ_p ln(1/r)/(1 − r).
+  double stroke_peak(double travel_in) const {
+    const double r = stroke_peak_rise_share, peak = std::pow(r, r / (1.0 - r)) * (1.0 - r);
+    return (std::exp(-travel_in / stroke_peak_length_in) - std::exp(-travel_in / (r * stroke_peak_length_in))) / peak;
+  }
   /// The force ratio at which the elasto-plastic slip gate reaches 1 (Dupont et al. 2002's z_max/z_ss).
   double breakaway_full_slip_ratio() const { return breakaway_ratio + breakaway_ramp_share * (1.0 - breakaway_ratio); }
   bool nonlinear() const {

@@ -495,9 +495,51 @@ TEST(Effects, BlimanSorineOvershootIsTwoElementsInTheTravel) {
     EXPECT_LT(worst, 1e-9) << "dir " << dir;
     EXPECT_GT(peak, 1.1 * g) << "dir " << dir << ": the force overshoots the sliding level";
     EXPECT_NEAR(f, dir * g, 2e-4 * g) << "dir " << dir << ": back to g in sliding";
-    if (dir > 0) EXPECT_NEAR(first / (v * dt), s0, 0.02 * s0) << "the initial stiffness stays σ0";
+    if (dir > 0) {
+      EXPECT_NEAR(first / (v * dt), s0, 0.02 * s0) << "the initial stiffness stays σ0";
+    }
     x1 = dir * (1.0 + th) * g + (x1 - dir * (1.0 + th) * g) * std::exp(-steps * v * dt / l1);
     x2 = -dir * th * g + (x2 + dir * th * g) * std::exp(-steps * v * dt / l2);
+  }
+}
+
+// transition_shape's stiction bump, on a Coulomb band (σ1 = σ2 = 0, Fs = Fc): the bristle force is
+// LuGre's exponential in the travel, a0 + (F0 − a0) e^(−σ0 s/g), and the force is it × (1 + p B(s))
+// once it pulls against the motion, s the travel since the turn point (the first stroke: since the
+// start); B = (e^(−s/ℓ) − e^(−s/(r ℓ)))/B_max peaks at 1 at s* = r ℓ ln(1/r)/(1 − r), and steady
+// sliding carries none.
+TEST(Effects, StictionBumpFollowsTheTravelSinceTheReversal) {
+  BrfdParams p = coulomb_band();
+  const double s0 = p.lugre.sigma0_kip_per_in, pk = 0.7, l = 0.3, r = 0.4, v = 0.5, dt = 1e-3;
+  p.effects.transition_shape = TransitionShapeEffect{};
+  p.effects.transition_shape->stroke_peak_share = pk;
+  p.effects.transition_shape->stroke_peak_length_in = l;
+  p.effects.transition_shape->stroke_peak_rise_share = r;
+  const double peak_at = r * l * std::log(1.0 / r) / (1.0 - r);
+  const double b_max = std::exp(-peak_at / l) - std::exp(-peak_at / (r * l));
+  BrfdModel m(p);
+  DamperInput in;
+  double f0 = 0.0;  // the bristle force at the start of each stroke
+  for (const double dir : {1.0, -1.0, 1.0}) {
+    const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+    in.drum_vel_in_per_s = dir * v;
+    double worst = 0.0, f = 0.0, bristle = 0.0, peak = 0.0, peak_s = 0.0;
+    const int steps = static_cast<int>(std::round(10.0 * l / (v * dt)));
+    for (int i = 1; i <= steps; ++i) {
+      in.drum_disp_in += dir * v * dt;
+      f = m.step(in, dt);
+      const double s = i * v * dt;
+      bristle = dir * g + (f0 - dir * g) * std::exp(-s0 * s / g);
+      const double bump = (std::exp(-s / l) - std::exp(-s / (r * l))) / b_max;
+      const double want = bristle * (bristle * dir > 0.0 ? 1.0 + pk * bump : 1.0);
+      worst = std::max(worst, std::abs(f - want));
+      if (bristle * dir > 0.0 && f / bristle - 1.0 > peak) peak = f / bristle - 1.0, peak_s = s;
+    }
+    EXPECT_LT(worst, 1e-9) << "dir " << dir;
+    EXPECT_NEAR(f, dir * g, 1e-4 * g) << "dir " << dir << ": back to g in sliding";
+    EXPECT_NEAR(peak, pk, 1e-3 * pk) << "dir " << dir << ": the bump's height, a share of the band force";
+    EXPECT_NEAR(peak_s, peak_at, 0.01) << "dir " << dir << ": where it peaks, in";
+    f0 = bristle;
   }
 }
 
