@@ -107,6 +107,8 @@ void BrfdModel::reset() {
   rest_rate_per_s_ = -1.0;
   slow_z_in_ = 0.0;
   overshoot_kip_ = 0.0;
+  pulse_fast_ = pulse_slow_ = 1.0;  // as set_bristle_in(0): the memories at +1, no pulse
+  pulse_kip_ = 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
@@ -143,6 +145,9 @@ void BrfdModel::set_bristle_in(double z_in) {
                    : 0.0;
   // The overshoot's slow element as at steady state: the held force shared (1 + θ) and −θ.
   overshoot_kip_ = ts && ts->overshoot_share > 0.0 ? -ts->overshoot_share * spring_force_kip(z_in) : 0.0;
+  // The travel pulse's memories: the direction the band was last loaded in, no pulse held.
+  pulse_fast_ = pulse_slow_ = z_in >= 0.0 ? 1.0 : -1.0;
+  pulse_kip_ = 0.0;
 }
 
 double BrfdModel::rate_factor(double speed) const {
@@ -516,7 +521,8 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
     const double r = v / ts->micro_damping_speed_in_per_s;
     sigma1 += ts->micro_damping_kip_s_per_in * std::exp(-r * r);
   }
-  return f.tension * band + (overshoot > 0.0 ? overshoot_kip_ : 0.0) +
+  const double pulse = ts && ts->travel_pulse_share > 0.0 ? pulse_kip_ : 0.0;  // Bliman-Sorine's travel pulse
+  return f.tension * band + (overshoot > 0.0 ? overshoot_kip_ : 0.0) + pulse +
          (sigma1 != 0.0 ? engaged * sigma1 * rate_in_frame(z, v, f) : 0.0) +
          (engaged + (1.0 - engaged) * slack_viscous) * viscous * vv + f.band_spring_kip;
 }
@@ -802,6 +808,16 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     // The overshoot's slow element: towards −θ g sgn v over ℓ2 of travel, exact over the step.
     const double steady = -std::copysign(e.transition_shape->overshoot_share * f.g, v);
     overshoot_kip_ = steady + (overshoot_kip_ - steady) * std::exp(-speed * dt_s / e.transition_shape->overshoot_length_in);
+  }
+  if (e.transition_shape && e.transition_shape->travel_pulse_share > 0.0) {
+    // The travel pulse's memories: towards sgn v over ε1 and ε2 of travel, exact over the step.
+    const TransitionShapeEffect& ts = *e.transition_shape;
+    const double direction = v >= 0.0 ? 1.0 : -1.0;
+    const double eps2 = ts.travel_pulse_length_in, eps1 = ts.travel_pulse_rise_share * eps2;
+    pulse_fast_ = direction + (pulse_fast_ - direction) * std::exp(-speed * dt_s / eps1);
+    pulse_slow_ = direction + (pulse_slow_ - direction) * std::exp(-speed * dt_s / eps2);
+    const Levels level = levels(in, v >= 0.0);
+    pulse_kip_ = ts.travel_pulse_share * level.tension * level.fc * (pulse_fast_ - pulse_slow_) / (2.0 * ts.travel_pulse_peak());
   }
   const double relax = f.relax;  // w / τ_r of residual_static, 1/s
   const double target_pos = f.target_pos, target_neg = f.target_neg;

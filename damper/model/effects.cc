@@ -193,7 +193,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     t.allow_only({"exponent", "elastic_unloading", "breakaway_ratio", "dahl_exponent", "slow_share",
                   "slow_stiffness_ratio", "breakaway_ramp_share", "micro_damping_kip_s_per_in",
                   "micro_damping_speed_in_per_s", "overshoot_share", "overshoot_length_in",
-                  "stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share"});
+                  "stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share",
+                  "travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
@@ -207,7 +208,10 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                                                t.get_double_in("overshoot_length_in", 0.5, 1e-3, 1e3),
                                                t.get_double_in("stroke_peak_share", 0.0, 0.0, 10.0),
                                                t.get_double_in("stroke_peak_length_in", 0.15, 1e-3, 1e3),
-                                               t.get_double_in("stroke_peak_rise_share", 0.4, 0.01, 0.95)};
+                                               t.get_double_in("stroke_peak_rise_share", 0.4, 0.01, 0.95),
+                                               t.get_double_in("travel_pulse_share", 0.0, 0.0, 10.0),
+                                               t.get_double_in("travel_pulse_length_in", 0.15, 1e-3, 1e3),
+                                               t.get_double_in("travel_pulse_rise_share", 0.4, 0.01, 0.95)};
   }
   return e;
 }
@@ -595,7 +599,8 @@ std::vector<EffectSpec> build_library() {
       "rising as a half sine to 1 at |y| = b + breakaway_ramp_share (1 - b) (LuGre: exponent = 1, u = 0, "
       "breakaway_ratio = 0); F = (1 + overshoot_share) N S(z) + F2, F2 -> -overshoot_share g sgn v over overshoot_length_in; "
       "the loaded band force x (1 + stroke_peak_share B(s)), B = (e^(-s/l) - e^(-s/(r l)))/B_max over the travel s since "
-      "the reversal (l = stroke_peak_length_in, r = stroke_peak_rise_share)",
+      "the reversal (l = stroke_peak_length_in, r = stroke_peak_rise_share); F += travel_pulse_share Fc (w1 - w2)/(2 P_max), "
+      "dw_j/ds = (sgn v - w_j)/e_j, e2 = travel_pulse_length_in, e1 = travel_pulse_rise_share e2",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
@@ -609,17 +614,22 @@ std::vector<EffectSpec> build_library() {
        {"overshoot_length_in", 0.05, 3.0, 0.5, 0.4, true},
        {"stroke_peak_share", 0.0, 2.0, 0.0, 0.3, false},
        {"stroke_peak_length_in", 0.03, 1.5, 0.15, 0.15, true},
-       {"stroke_peak_rise_share", 0.1, 0.8, 0.4, 0.4, false}},
+       {"stroke_peak_rise_share", 0.1, 0.8, 0.4, 0.4, false},
+       {"travel_pulse_share", 0.0, 2.0, 0.0, 0.3, false},
+       {"travel_pulse_length_in", 0.03, 1.5, 0.15, 0.15, true},
+       {"travel_pulse_rise_share", 0.1, 0.8, 0.4, 0.4, false}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
-        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9], t[10], t[11], t[12], t[13]};
+        return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9], t[10], t[11], t[12], t[13],
+                                     t[14], t[15], t[16]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
                                    a.dahl_exponent, a.slow_share,        a.slow_stiffness_ratio,
                                    a.breakaway_ramp_share, a.micro_damping_kip_s_per_in, a.micro_damping_speed_in_per_s,
                                    a.overshoot_share, a.overshoot_length_in,
-                                   a.stroke_peak_share, a.stroke_peak_length_in, a.stroke_peak_rise_share};
+                                   a.stroke_peak_share, a.stroke_peak_length_in, a.stroke_peak_rise_share,
+                                   a.travel_pulse_share, a.travel_pulse_length_in, a.travel_pulse_rise_share};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -724,7 +734,8 @@ std::vector<EffectSpec> build_library() {
                             {"slow_share", "slow_stiffness_ratio"},         // two-stage contact
                             {"micro_damping_kip_s_per_in", "micro_damping_speed_in_per_s"},  // fading micro-damping
                             {"overshoot_share", "overshoot_length_in"},  // Bliman-Sorine's stiction peak in travel
-                            {"stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share"}});  // a bump since the reversal
+                            {"stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share"},  // a bump since the reversal
+                            {"travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"}});  // Bliman-Sorine's pulse
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

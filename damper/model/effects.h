@@ -423,6 +423,20 @@
 ///    length (tried, not kept) replayed it 35 times the noise off, because the BRFD's bristle takes
 ///    about 0.3 in to reverse; entered as this term it replays the records at 0.032 and 0.028 kip RMS
 ///    (noise 0.027).
+///    A travel pulse after each reversal (travel_pulse_share = q, travel_pulse_length_in = ε2,
+///    travel_pulse_rise_share = r; twenty-third session): Bliman & Sorine's (1995) second-order
+///    dry friction as a force of its own beside the band's bristle, two junction memories w1, w2
+///    following the direction of motion over ε1 = r ε2 and ε2 of drum travel,
+///      F += q Fc (w1 − w2) / (2 P_max),  dw_j/ds = (sgn v − w_j)/ε_j (exact over the step),
+///      P_max = r^(r/(1−r)) (1 − r),
+///    Fc Eq. (4)'s kinetic level in the direction of motion. After a full reversal (w_j from ∓1)
+///    (w1 − w2)/2 = e^(−s/ε2) − e^(−s/ε1): zero at the turn point, a peak of q Fc at the same s* as
+///    the stroke bump, gone in steady sliding; a short stroke turns the memories only part way, so its
+///    pulse is smaller (no reversal threshold). Unlike the stroke bump it acts from the turn point,
+///    while the bristle is still reversing: set 33 t19's Bliman-Sorine pulse (strong, over 0.03 and
+///    0.12 in) was named none, the stroke bump 0 % of it, because the band is loaded in the new
+///    direction only some 0.2 in after the turn. The memories start at the sign of the record's
+///    initial force (the direction the band was last loaded in); w1, w2 are states of step().
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -711,6 +725,16 @@ struct TransitionShapeEffect {
   double stroke_peak(double travel_in) const {
     const double r = stroke_peak_rise_share, peak = std::pow(r, r / (1.0 - r)) * (1.0 - r);
     return (std::exp(-travel_in / stroke_peak_length_in) - std::exp(-travel_in / (r * stroke_peak_length_in))) / peak;
+  }
+  /// q >= 0: a travel pulse after each reversal (Bliman-Sorine's second-order dry friction in the
+  /// travel domain), F += q Fc (w1 − w2) / (2 P_max), dw_j/ds = (sgn v − w_j)/ε_j (file comment); 0: none
+  double travel_pulse_share = 0.0;
+  double travel_pulse_length_in = 0.15;  ///< ε2: the travel over which the pulse falls, in
+  double travel_pulse_rise_share = 0.4;  ///< r = ε1/ε2 in (0, 1): it rises over ε1 = r ε2
+  /// P_max = r^(r/(1−r)) (1 − r): the peak of (w1 − w2)/2 after a full reversal (as B_max above).
+  double travel_pulse_peak() const {
+    const double r = travel_pulse_rise_share;
+    return std::pow(r, r / (1.0 - r)) * (1.0 - r);
   }
   /// The force ratio at which the elasto-plastic slip gate reaches 1 (Dupont et al. 2002's z_max/z_ss).
   double breakaway_full_slip_ratio() const { return breakaway_ratio + breakaway_ramp_share * (1.0 - breakaway_ratio); }

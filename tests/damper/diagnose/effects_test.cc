@@ -543,6 +543,54 @@ TEST(Effects, StictionBumpFollowsTheTravelSinceTheReversal) {
   }
 }
 
+// transition_shape's travel pulse (Bliman & Sorine 1995), on a Coulomb band: beside the bristle force
+// a0 + (F0 − a0) e^(−σ0 s/g), a force q Fc (w1 − w2)/(2 P_max) whose memories follow the direction
+// of motion over the travel, w_j(s) = dir + (w_j0 − dir) e^(−s/ε_j), from the turn point on (no
+// reversal threshold): after a long stroke the pulse is dir q Fc (e^(−s/ε2) − e^(−s/ε1))/P_max,
+// peaking at q Fc at s* = ε1 ln(ε2/ε1)/(1 − ε1/ε2); a short stroke turns the memories part way.
+TEST(Effects, TravelPulseFollowsTwoMemoriesOfTheTravel) {
+  BrfdParams p = coulomb_band();
+  const double s0 = p.lugre.sigma0_kip_per_in, q = 0.6, e2 = 0.12, r = 0.25, e1 = r * e2, v = 0.5, dt = 1e-3;
+  p.effects.transition_shape = TransitionShapeEffect{};
+  p.effects.transition_shape->travel_pulse_share = q;
+  p.effects.transition_shape->travel_pulse_length_in = e2;
+  p.effects.transition_shape->travel_pulse_rise_share = r;
+  const double peak_at = e1 * std::log(e2 / e1) / (1.0 - r);
+  const double p_max = std::exp(-peak_at / e2) - std::exp(-peak_at / e1);
+  BrfdModel m(p);
+  DamperInput in;
+  double f0 = 0.0, w1 = 1.0, w2 = 1.0;  // the bristle force and the memories at each stroke's start (z = 0: +1)
+  // (direction, stroke length in): long strokes, then a short one back and a long one on.
+  const std::vector<std::pair<double, double>> strokes = {{1.0, 1.5}, {-1.0, 1.5}, {1.0, 1.5}, {-1.0, 0.05}, {1.0, 1.5}};
+  for (std::size_t k = 0; k < strokes.size(); ++k) {
+    const auto [dir, length] = strokes[k];
+    const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+    in.drum_vel_in_per_s = dir * v;
+    double worst = 0.0, f = 0.0, bristle = 0.0, peak = 0.0, peak_s = 0.0;
+    const int steps = static_cast<int>(std::round(length / (v * dt)));
+    for (int i = 1; i <= steps; ++i) {
+      in.drum_disp_in += dir * v * dt;
+      f = m.step(in, dt);
+      const double s = i * v * dt;
+      bristle = dir * g + (f0 - dir * g) * std::exp(-s0 * s / g);
+      const double a1 = dir + (w1 - dir) * std::exp(-s / e1), a2 = dir + (w2 - dir) * std::exp(-s / e2);
+      const double pulse = q * g * (a1 - a2) / (2.0 * p_max);
+      worst = std::max(worst, std::abs(f - bristle - pulse));
+      if (dir * (f - bristle) > peak) peak = dir * (f - bristle), peak_s = s;
+    }
+    EXPECT_LT(worst, 1e-9) << "stroke " << k;
+    if (k == 1 || k == 2) {  // a full reversal from a long stroke
+      EXPECT_NEAR(peak, q * g, 1e-3 * q * g) << "stroke " << k << ": the pulse's height, q Fc";
+      EXPECT_NEAR(peak_s, peak_at, 0.002) << "stroke " << k << ": where it peaks, in";
+    }
+    if (k == 4) EXPECT_LT(peak, 0.5 * q * g) << "after a 0.05 in stroke back the memories had turned only part way";
+    if (length > 1.0) EXPECT_NEAR(f, dir * g, 1e-4 * g) << "stroke " << k << ": gone in steady sliding";
+    w1 = dir + (w1 - dir) * std::exp(-length / e1);
+    w2 = dir + (w2 - dir) * std::exp(-length / e2);
+    f0 = bristle;
+  }
+}
+
 // asymmetry's motion_stiffness a_m, with σ1 = σ2 = 0 and Fs = Fc: from F = 0 the force rises as
 // Fc (1 − exp(−σ0 (1 ± a_m) x/Fc)), forward + and backward −, to the same sliding level.
 TEST(Effects, BandStiffnessByDirectionOfMotionFollowsItsClosedForm) {
