@@ -422,29 +422,32 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.3}));
   // The wrap built up over each stroke since the reversal, backward only, on Fc only: Fc (1 + 0.5 (1 − e^(−s/0.4 in))).
   c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4}));
-  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
-  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));  // a rounder transition than LuGre
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));  // a rounder transition than LuGre
   // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
-  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // Elastic up to 30 % of the friction level, slip full from 61.5 % on (Dupont's z_max below the
   // steady state; unloading as LuGre).
-  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // Dahl's own exponent: dF/dx = σ0 |1 − F/g sgn v|^2.5 sgn(·), a slow rounded approach to sliding.
-  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // Two contact elements: half the friction carried by one 5 times softer (Maxwell-slip).
-  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // LuGre's micro-damping fading with the speed (Canudas de Wit et al. 1995), σ1' = 2 kip s/in, v_d = 0.4 in/s.
-  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // Bliman-Sorine's stiction peak in the travel domain: the fast element over-reaches by θ, a slow one
   // pulls back over ℓ2 (blind set 31 t19)
-  c.push_back(library_case("transition_shape", "overshoot", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.7, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "overshoot", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.7, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // A stiction bump in the travel since each reversal: the loaded band force × (1 + 0.8 B(s)), B rising
   // over 0.052 in and falling over 0.13 in of travel, peak 1 (blind set 32 t02)
-  c.push_back(library_case("transition_shape", "stiction_bump", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.8, 0.13, 0.4, 0.0, 0.15, 0.4}));
+  c.push_back(library_case("transition_shape", "stiction_bump", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.8, 0.13, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   // Bliman-Sorine's travel pulse beside the bristle: 0.6 Fc (w1 − w2)/(2 P_max), w_j following sgn v
   // over 0.03 and 0.12 in of travel (blind set 33 t19)
-  c.push_back(library_case("transition_shape", "travel_pulse", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.6, 0.12, 0.25}));
+  c.push_back(library_case("transition_shape", "travel_pulse", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.6, 0.12, 0.25, 0.0, 1.0, 1.0}));
+  // An Iwan bank carrying 40 % of the band force: 16 elasto-plastic elements, Iwan's uniform density
+  // of slip travels (blind sets 30 t25, 31 t27, 32 t21, 33 t15 wrote such banks)
+  c.push_back(library_case("transition_shape", "iwan_bank", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.4, 1.0, 1.0}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

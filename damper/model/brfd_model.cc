@@ -109,6 +109,10 @@ void BrfdModel::reset() {
   overshoot_kip_ = 0.0;
   pulse_fast_ = pulse_slow_ = 1.0;  // as set_bristle_in(0): the memories at +1, no pulse
   pulse_kip_ = 0.0;
+  bank_kip_.fill(0.0);
+  const TransitionShapeEffect* bank = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
+  for (int k = 0; k < TransitionShapeEffect::kBankElements; ++k)
+    bank_limit_[k] = bank && bank->bank_share > 0.0 ? bank->bank_limit_share(k) : 0.0;
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
   rate_state_s_ = ve && ve->memory_in > 0.0 ? ve->memory_in / ve->reference_speed_in_per_s : 0.0;
   stribeck_speed_ = 0.0;
@@ -148,6 +152,14 @@ void BrfdModel::set_bristle_in(double z_in) {
   // The travel pulse's memories: the direction the band was last loaded in, no pulse held.
   pulse_fast_ = pulse_slow_ = z_in >= 0.0 ? 1.0 : -1.0;
   pulse_kip_ = 0.0;
+  // The Iwan bank: the held force shared by the elements' slip shares.
+  for (int k = 0; k < TransitionShapeEffect::kBankElements; ++k) bank_kip_[k] = bank_limit_[k] * spring_force_kip(z_in);
+}
+
+double BrfdModel::bank_sum_kip() const {
+  double sum = 0.0;
+  for (const double e : bank_kip_) sum += e;
+  return sum;
 }
 
 double BrfdModel::rate_factor(double speed) const {
@@ -513,6 +525,8 @@ double BrfdModel::force_in_frame(double z, double v, const Frame& f) const {
   const double overshoot = ts ? ts->overshoot_share : 0.0;  // Bliman-Sorine: fast (1 + θ), slow F_2
   double band = (1.0 + overshoot) * ((1.0 - slow) * spring_force_kip(z) +
                                      (slow > 0.0 ? slow * p.sigma0_kip_per_in * ts->slow_stiffness_ratio * slow_z_in_ : 0.0));
+  // The Iwan bank carries φ_b of the band force (effects.h).
+  if (ts && ts->bank_share > 0.0) band = (1.0 - ts->bank_share) * band + ts->bank_share * bank_sum_kip();
   // The stiction bump since the reversal, on the band loaded in the direction of motion (effects.h).
   if (ts && ts->stroke_peak_share != 0.0 && band * v > 0.0) band *= 1.0 + ts->stroke_peak_share * ts->stroke_peak(stroke_travel_in_);
   // σ1 of Eq. (3), and transition_shape's micro-damping σ1' e^(−(v/v_d)²) (effects.h)
@@ -808,6 +822,15 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     // The overshoot's slow element: towards −θ g sgn v over ℓ2 of travel, exact over the step.
     const double steady = -std::copysign(e.transition_shape->overshoot_share * f.g, v);
     overshoot_kip_ = steady + (overshoot_kip_ - steady) * std::exp(-speed * dt_s / e.transition_shape->overshoot_length_in);
+  }
+  if (e.transition_shape && e.transition_shape->bank_share > 0.0) {
+    // The Iwan bank: each element elastic at κ_b σ0/N, slipping at ± w_k g (exact with v and g held).
+    const double stretch = e.transition_shape->bank_stiffness_ratio * params_.lugre.sigma0_kip_per_in /
+                           TransitionShapeEffect::kBankElements * v * dt_s;
+    for (int k = 0; k < TransitionShapeEffect::kBankElements; ++k) {
+      const double limit = bank_limit_[k] * f.g;
+      bank_kip_[k] = std::clamp(bank_kip_[k] + stretch, -limit, limit);
+    }
   }
   if (e.transition_shape && e.transition_shape->travel_pulse_share > 0.0) {
     // The travel pulse's memories: towards sgn v over ε1 and ε2 of travel, exact over the step.

@@ -199,6 +199,9 @@ class BrfdModel final : public DamperModel {
   double overshoot_kip_ = 0.0;            ///< F_2 of transition_shape's Bliman-Sorine overshoot, kip
   double pulse_fast_ = 0.0, pulse_slow_ = 0.0;  ///< w1, w2 of transition_shape's travel pulse (−1..1)
   double pulse_kip_ = 0.0;                ///< the travel pulse's force q Fc (w1 − w2)/(2 P_max), kip
+  /// e_k of transition_shape's Iwan bank: each element's force (before N_λ), kip; and w_k, its slip share of g
+  std::array<double, TransitionShapeEffect::kBankElements> bank_kip_{}, bank_limit_{};
+  double bank_sum_kip() const;  ///< Σ e_k
   double rate_state_s_ = 0.0;             ///< θ of the velocity effect's slip memory, s
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double lagged_velocity_ = 0.0;          ///< v_L: the drum velocity through the same lag (signed), in/s

@@ -194,7 +194,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "slow_stiffness_ratio", "breakaway_ramp_share", "micro_damping_kip_s_per_in",
                   "micro_damping_speed_in_per_s", "overshoot_share", "overshoot_length_in",
                   "stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share",
-                  "travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"});
+                  "travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share",
+                  "bank_share", "bank_stiffness_ratio", "bank_spread_exponent"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
@@ -211,7 +212,10 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                                                t.get_double_in("stroke_peak_rise_share", 0.4, 0.01, 0.95),
                                                t.get_double_in("travel_pulse_share", 0.0, 0.0, 10.0),
                                                t.get_double_in("travel_pulse_length_in", 0.15, 1e-3, 1e3),
-                                               t.get_double_in("travel_pulse_rise_share", 0.4, 0.01, 0.95)};
+                                               t.get_double_in("travel_pulse_rise_share", 0.4, 0.01, 0.95),
+                                               t.get_double_in("bank_share", 0.0, 0.0, 0.95),
+                                               t.get_double_in("bank_stiffness_ratio", 1.0, 1e-3, 1e3),
+                                               t.get_double_in("bank_spread_exponent", 1.0, 0.0, 10.0)};
   }
   return e;
 }
@@ -600,7 +604,9 @@ std::vector<EffectSpec> build_library() {
       "breakaway_ratio = 0); F = (1 + overshoot_share) N S(z) + F2, F2 -> -overshoot_share g sgn v over overshoot_length_in; "
       "the loaded band force x (1 + stroke_peak_share B(s)), B = (e^(-s/l) - e^(-s/(r l)))/B_max over the travel s since "
       "the reversal (l = stroke_peak_length_in, r = stroke_peak_rise_share); F += travel_pulse_share Fc (w1 - w2)/(2 P_max), "
-      "dw_j/ds = (sgn v - w_j)/e_j, e2 = travel_pulse_length_in, e1 = travel_pulse_rise_share e2",
+      "dw_j/ds = (sgn v - w_j)/e_j, e2 = travel_pulse_length_in, e1 = travel_pulse_rise_share e2; an Iwan bank: "
+      "F_band = (1 - bank_share) N S(z) + bank_share N sum e_k, 16 elasto-plastic elements of stiffness "
+      "bank_stiffness_ratio sigma0/16 slipping at w_k g, w_k ~ ((k - 1/2)/16)^bank_spread_exponent",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
@@ -617,11 +623,14 @@ std::vector<EffectSpec> build_library() {
        {"stroke_peak_rise_share", 0.1, 0.8, 0.4, 0.4, false},
        {"travel_pulse_share", 0.0, 2.0, 0.0, 0.3, false},
        {"travel_pulse_length_in", 0.03, 1.5, 0.15, 0.15, true},
-       {"travel_pulse_rise_share", 0.1, 0.8, 0.4, 0.4, false}},
+       {"travel_pulse_rise_share", 0.1, 0.8, 0.4, 0.4, false},
+       {"bank_share", 0.0, 0.9, 0.0, 0.3, false},
+       {"bank_stiffness_ratio", 0.1, 10.0, 1.0, 1.0, true},
+       {"bank_spread_exponent", 0.0, 4.0, 1.0, 1.0, false}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9], t[10], t[11], t[12], t[13],
-                                     t[14], t[15], t[16]};
+                                     t[14], t[15], t[16], t[17], t[18], t[19]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
@@ -629,7 +638,8 @@ std::vector<EffectSpec> build_library() {
                                    a.breakaway_ramp_share, a.micro_damping_kip_s_per_in, a.micro_damping_speed_in_per_s,
                                    a.overshoot_share, a.overshoot_length_in,
                                    a.stroke_peak_share, a.stroke_peak_length_in, a.stroke_peak_rise_share,
-                                   a.travel_pulse_share, a.travel_pulse_length_in, a.travel_pulse_rise_share};
+                                   a.travel_pulse_share, a.travel_pulse_length_in, a.travel_pulse_rise_share,
+                                   a.bank_share, a.bank_stiffness_ratio, a.bank_spread_exponent};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -735,7 +745,8 @@ std::vector<EffectSpec> build_library() {
                             {"micro_damping_kip_s_per_in", "micro_damping_speed_in_per_s"},  // fading micro-damping
                             {"overshoot_share", "overshoot_length_in"},  // Bliman-Sorine's stiction peak in travel
                             {"stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share"},  // a bump since the reversal
-                            {"travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"}});  // Bliman-Sorine's pulse
+                            {"travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"},  // Bliman-Sorine's pulse
+                            {"bank_share", "bank_stiffness_ratio", "bank_spread_exponent"}});  // an Iwan bank
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

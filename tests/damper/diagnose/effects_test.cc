@@ -583,12 +583,70 @@ TEST(Effects, TravelPulseFollowsTwoMemoriesOfTheTravel) {
       EXPECT_NEAR(peak, q * g, 1e-3 * q * g) << "stroke " << k << ": the pulse's height, q Fc";
       EXPECT_NEAR(peak_s, peak_at, 0.002) << "stroke " << k << ": where it peaks, in";
     }
-    if (k == 4) EXPECT_LT(peak, 0.5 * q * g) << "after a 0.05 in stroke back the memories had turned only part way";
-    if (length > 1.0) EXPECT_NEAR(f, dir * g, 1e-4 * g) << "stroke " << k << ": gone in steady sliding";
+    if (k == 4) {
+      EXPECT_LT(peak, 0.5 * q * g) << "after a 0.05 in stroke back the memories had turned only part way";
+    }
+    if (length > 1.0) {
+      EXPECT_NEAR(f, dir * g, 1e-4 * g) << "stroke " << k << ": gone in steady sliding";
+    }
     w1 = dir + (w1 - dir) * std::exp(-length / e1);
     w2 = dir + (w2 - dir) * std::exp(-length / e2);
     f0 = bristle;
   }
+}
+
+// transition_shape's Iwan bank, on a Coulomb band from rest: the force is (1 − φ_b) × LuGre's
+// exponential plus φ_b × Σ min(k_e x, w_k g) (every element elastic until it slips); with m = 1
+// (Iwan's uniform density of slip travels) that sum is close to the parabola
+// κσ0 x − (κσ0 x)²/(4g) up to x = 2g/(κσ0). After a reversal each element sticks and unloads on its
+// elastic line, so the bank's reversal curve is twice its virgin curve at half the travel (Masing's
+// rule), where LuGre's bristle slips at once.
+TEST(Effects, IwanBankLoadsAsItsElementsAndReversesByMasingsRule) {
+  BrfdParams p = coulomb_band();
+  const double s0 = p.lugre.sigma0_kip_per_in, share = 0.5, kappa = 0.8, v = 0.5, dt = 1e-3;
+  const int n = TransitionShapeEffect::kBankElements;
+  p.effects.transition_shape = TransitionShapeEffect{};
+  p.effects.transition_shape->bank_share = share;
+  p.effects.transition_shape->bank_stiffness_ratio = kappa;
+  p.effects.transition_shape->bank_spread_exponent = 1.0;
+  p.lugre.fc_bwd_kip = p.lugre.fs_bwd_kip = p.lugre.fc_fwd_kip;  // one level both ways: Masing's rule exact
+  const double g = p.lugre.fc_fwd_kip, gb = g, ke = kappa * s0 / n;
+  BrfdModel m(p);
+  DamperInput in;
+  const int steps = static_cast<int>(std::round(3.0 * g / (kappa * s0) / (v * dt)));
+  std::vector<double> virgin(steps + 1, 0.0);  // the bank's part of the force on the first stroke
+  double worst = 0.0, parabola = 0.0;
+  in.drum_vel_in_per_s = v;
+  for (int i = 1; i <= steps; ++i) {
+    in.drum_disp_in += v * dt;
+    const double f = m.step(in, dt), x = i * v * dt;
+    double bank = 0.0;
+    for (int k = 0; k < n; ++k) bank += std::min(ke * x, (2.0 * k + 1.0) / (n * n) * g);
+    worst = std::max(worst, std::abs(f - (1.0 - share) * g * (1.0 - std::exp(-s0 * x / g)) - share * bank));
+    virgin[i] = (f - (1.0 - share) * g * (1.0 - std::exp(-s0 * x / g))) / share;
+    const double y = std::min(kappa * s0 * x / (2.0 * g), 1.0);
+    parabola = std::max(parabola, std::abs(virgin[i] - g * (2.0 * y - y * y)));
+  }
+  EXPECT_LT(worst, 1e-9) << "the first stroke: the elements' closed form";
+  EXPECT_LT(parabola, 0.01 * g) << "m = 1: Iwan's parabolic loading curve";
+  EXPECT_NEAR(virgin[steps], g, 1e-9) << "steady sliding: the elements' slip forces sum to g";
+  // Back the other way: bank(s) = g − Σ min(k_e s, 2 w_k g).
+  in.drum_vel_in_per_s = -v;
+  const double bristle0 = g * (1.0 - std::exp(-s0 * steps * v * dt / g));
+  double masing = 0.0, lugre_gap = 0.0;
+  for (int i = 1; i <= 2 * steps; ++i) {
+    in.drum_disp_in -= v * dt;
+    const double f = m.step(in, dt), s = i * v * dt;
+    const double bristle = -gb + (bristle0 + gb) * std::exp(-s0 * s / gb);
+    double bank = g;
+    for (int k = 0; k < n; ++k) bank -= std::min(ke * s, (2.0 * k + 1.0) / (n * n) * (g + gb));
+    worst = std::max(worst, std::abs(f - (1.0 - share) * bristle - share * bank));
+    if (i % 2 == 0) masing = std::max(masing, std::abs((g - (f - (1.0 - share) * bristle) / share) - 2.0 * virgin[i / 2]));
+    if (i == 10) lugre_gap = (g - bristle) - (g - bank);  // right after the turn the bristle has fallen further
+  }
+  EXPECT_LT(worst, 1e-9) << "the reversal: each element unloads on its elastic line";
+  EXPECT_LT(masing, 1e-9) << "Masing: the reversal curve is twice the virgin one";
+  EXPECT_GT(lugre_gap, 0.0) << "LuGre's bristle slips at the turn, the bank does not";
 }
 
 // asymmetry's motion_stiffness a_m, with σ1 = σ2 = 0 and Fs = Fc: from F = 0 the force rises as
