@@ -99,30 +99,6 @@ RegimeEnergy fold_energy(const std::vector<DiagnoseRecord>& recs, const Fold& fo
   return e;
 }
 
-// Per sample of each rest (Segmentation::rests, the stops between strokes and the final rest):
-// the mean of the low-frequency residual `l` over the first `window_s` of that rest once the
-// moving average has left the stroke (from `skip` samples, its half-width, after the stop: the level
-// the drum stopped with); NaN over those first `skip` samples, where `l` still averages the stroke
-// before the stop; 0 elsewhere. (Twenty-third session: with the level taken from the stop itself, an
-// offset carried into the rest showed as a change of the residual over the first half-width, and
-// set 33 t15's Iwan bank, recovered to the noise floor, had 58 % of its gain counted as a change at
-// rest, the held forces it left flat to 0.01 kip.)
-std::vector<double> levels_at_stops(const std::vector<double>& l, const Segmentation& seg, double dt_s, double window_s,
-                                    std::size_t skip) {
-  std::vector<double> c(l.size(), 0.0);
-  const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(window_s / dt_s));
-  for (const Segmentation::Rest& r : seg.rests) {
-    const std::size_t end = std::min(l.size(), r.end), settled = std::min(end, r.begin + skip), head = std::min(end, settled + w);
-    for (std::size_t i = r.begin; i < settled; ++i) c[i] = std::nan("");
-    if (settled >= head) continue;
-    double sum = 0.0;
-    for (std::size_t i = settled; i < head; ++i) sum += l[i];
-    const double level = sum / static_cast<double>(head - settled);
-    for (std::size_t i = settled; i < end; ++i) c[i] = level;
-  }
-  return c;
-}
-
 // Sums of the signature over the folds: gain, samples and null residual energy, in the effect's own
 // regimes and in all.
 struct SignatureTally {
@@ -145,8 +121,6 @@ struct SignatureTally {
 // as own gain for effects acting at rest (and for those acting through the actuators where they
 // move), as gain elsewhere for every other effect. A constant offset carried into the rest from
 // the stroke before is nobody's signature, whichever effect could also shift it.
-constexpr double kStopLevelS = 0.05;
-
 void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, const FoldPredictions& null_fp,
                     const FoldPredictions& fp, const EffectSpec& spec, double settle_s, const SegmentationOptions& so,
                     SignatureTally& tally) {
@@ -162,9 +136,8 @@ void signature_gain(const std::vector<DiagnoseRecord>& recs, const Fold& fold, c
       r1[i] = fp.pred[p.record][i] - r.test.force_kip[i];
     }
     const std::vector<double> l0 = low_frequency_part(r0, r.test.dt_s, so), l1 = low_frequency_part(r1, r.test.dt_s, so);
-    const std::size_t skip = static_cast<std::size_t>(std::max(1L, std::lround(0.5 * so.chatter_window_s / r.test.dt_s)));
-    const std::vector<double> c0 = levels_at_stops(l0, r.seg, r.test.dt_s, kStopLevelS, skip);
-    const std::vector<double> c1 = levels_at_stops(l1, r.seg, r.test.dt_s, kStopLevelS, skip);
+    const std::vector<double> c0 = levels_at_stops(l0, r.seg, r.test.dt_s, so);
+    const std::vector<double> c1 = levels_at_stops(l1, r.seg, r.test.dt_s, so);
     for (std::size_t i = p.begin; i < p.end; ++i) {
       const Regime g = r.seg.regime[i];
       // Own: the drum state is one of the effect's regimes, or the actuators move and it acts
@@ -324,6 +297,23 @@ int winner_of(const std::vector<CandidateScore>& scores, const std::vector<int>&
 }
 
 }  // namespace
+
+std::vector<double> levels_at_stops(const std::vector<double>& l, const Segmentation& seg, double dt_s,
+                                    const SegmentationOptions& so) {
+  std::vector<double> c(l.size(), 0.0);
+  const std::size_t skip = static_cast<std::size_t>(std::max(1L, std::lround(0.5 * so.chatter_window_s / dt_s)));
+  const std::size_t w = std::max<std::size_t>(1, static_cast<std::size_t>(kStopLevelS / dt_s));
+  for (const Segmentation::Rest& r : seg.rests) {
+    const std::size_t end = std::min(l.size(), r.end), settled = std::min(end, r.begin + skip), head = std::min(end, settled + w);
+    for (std::size_t i = r.begin; i < settled; ++i) c[i] = std::nan("");
+    if (settled >= head) continue;
+    double sum = 0.0;
+    for (std::size_t i = settled; i < head; ++i) sum += l[i];
+    const double level = sum / static_cast<double>(head - settled);
+    for (std::size_t i = settled; i < end; ++i) c[i] = level;
+  }
+  return c;
+}
 
 std::vector<double> choice_confidence(const std::vector<CandidateScore>& scores, const std::vector<std::size_t>& part_record,
                                       std::size_t records, double sigma2, const DiagnoseOptions& o, unsigned seed) {

@@ -133,6 +133,22 @@ int distinct_rest_levels(const std::vector<double>& held_kip);
 ///    (EffectSpec::mechanism_regimes), then the whole family; {spec} when it has no mechanisms.
 std::vector<EffectSpec> candidate_subfamilies(const EffectSpec& spec, int rest_levels);
 
+/// Length of the rest over which levels_at_stops takes the level the drum stopped with, s.
+constexpr double kStopLevelS = 0.05;
+
+/// The level each rest starts from, for the physics signature at rest: per sample of each rest
+/// (Segmentation::rests: the stops between strokes and the final rest), the mean of the
+/// low-frequency residual `l` (low_frequency_part, a centred moving average over
+/// so.chatter_window_s) over kStopLevelS once that average has left the stroke, i.e. from half its
+/// width after the stop; NaN over that first half-width, where `l` still averages the stroke before
+/// the stop (counted as the drum's state); 0 outside the rests. Only the change of `l` from this
+/// level is the work of an effect acting at rest: an offset carried into the rest from the stroke
+/// is nobody's signature. (Twenty-third session: with the level taken from the stop itself, the end
+/// of the stroke showed as a change at rest, and set 33 t15's Iwan bank, recovered to the noise
+/// floor, had 58 % of its gain counted as a change at rest; docs/diagnose.md.)
+std::vector<double> levels_at_stops(const std::vector<double>& l, const Segmentation& seg, double dt_s,
+                                    const SegmentationOptions& so);
+
 /// Bootstrap confidence of the choice: for each candidate, the share of o.resamples resamples (with
 /// replacement, seeded by `seed`) of the held-out parts in which it is the winner — the passing
 /// candidate with the largest gain on the drawn parts. part_record[p] is part p's record, sigma2 the

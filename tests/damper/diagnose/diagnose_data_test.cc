@@ -1,6 +1,7 @@
 // Reading, split and regimes of `diagnose` (damper/diagnose/diagnose_data.h) on a synthetic record with a
 // known drive, and the recorded-run CSV reader.
 #include "damper/diagnose/diagnose_data.h"
+#include "damper/diagnose/diagnose_select.h"
 #include "synthetic.h"
 
 #include <gtest/gtest.h>
@@ -220,6 +221,74 @@ TEST(DiagnoseData, ReadsARecordedPhysicalRun) {
     f << "a,b\n1,2\n";
   }
   EXPECT_THROW(read_measured_record(dir + "/nocols.csv"), BrfdDataError);
+}
+
+// The level a rest starts from (levels_at_stops), on a record that strokes 0 -> 1 in (1 s), stops
+// 1 s, strokes back (1 s) and rests 1.5 s. The residual is 0.8 kip while the drum moves; at the stop
+// between strokes it is a constant 0.3 kip (an offset carried into the rest: no change at rest);
+// over the final rest it creeps linearly from 0.3 kip by 0.2 kip/s (a change at rest). Closed forms:
+// over the first half-width of the moving average after each stop the level is NaN (the average
+// still holds the stroke); after it, the change l - c is 0 at the first stop, and at the final rest
+// equals the creep since the middle of the level's window, r(i) - r(settled + (w - 1)/2), because a
+// centred average leaves a linear ramp unchanged. Outside rests the level is 0. Fails if the level
+// is taken from the stop itself (the stroke's 0.8 kip then shows as a change at rest) or if the
+// NaN half-width is dropped.
+TEST(DiagnoseData, LevelAtAStopIsTakenOnceTheAverageHasLeftTheStroke) {
+  BrfdTest t;
+  t.dt_s = 1.0 / 1000.0;
+  struct Leg {
+    double duration_s, from_in, to_in;
+  };
+  const std::vector<Leg> legs{{1.0, 0.0, 1.0}, {1.0, 1.0, 1.0}, {1.0, 1.0, 0.0}, {1.5, 0.0, 0.0}};
+  double time = 0.0;
+  for (const Leg& leg : legs) {
+    const int steps = static_cast<int>(std::lround(leg.duration_s / t.dt_s));
+    for (int k = 0; k < steps; ++k) {
+      const double u = static_cast<double>(k) / steps;
+      t.time_s.push_back(time);
+      t.drum_disp_in.push_back(leg.from_in + (leg.to_in - leg.from_in) * 0.5 * (1.0 - std::cos(M_PI * u)));
+      t.drum_vel_in_per_s.push_back((leg.to_in - leg.from_in) * 0.5 * M_PI / leg.duration_s * std::sin(M_PI * u));
+      t.force_kip.push_back(0.0);
+      time += t.dt_s;
+    }
+  }
+  const SegmentationOptions so;
+  const Segmentation s = segment_record(t);
+  ASSERT_EQ(s.rests.size(), 2u);
+  const Segmentation::Rest stop = s.rests[0], last = s.rests[1];
+  const double creep_kip_per_s = 0.2;
+  std::vector<double> r(t.size(), 0.8);
+  for (std::size_t i = stop.begin; i < stop.end; ++i) r[i] = 0.3;
+  for (std::size_t i = last.begin; i < last.end; ++i) r[i] = 0.3 + creep_kip_per_s * (i - last.begin) * t.dt_s;
+  const std::vector<double> l = low_frequency_part(r, t.dt_s, so);
+  const std::vector<double> c = levels_at_stops(l, s, t.dt_s, so);
+  ASSERT_EQ(c.size(), t.size());
+  const std::size_t half = static_cast<std::size_t>(std::lround(0.5 * so.chatter_window_s / t.dt_s));
+  const std::size_t w = static_cast<std::size_t>(kStopLevelS / t.dt_s);
+  // The stroke's end is still in the average over the first half-width after the stop.
+  EXPECT_GT(l[stop.begin] - 0.3, 0.2);
+  std::size_t in_rest = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const bool resting = (i >= stop.begin && i < stop.end) || i >= last.begin;
+    if (!resting) {
+      EXPECT_EQ(c[i], 0.0) << "sample " << i << " is not at rest";
+      continue;
+    }
+    const std::size_t begin = i >= last.begin ? last.begin : stop.begin;
+    if (i < begin + half) {
+      EXPECT_TRUE(std::isnan(c[i])) << "sample " << i - begin << " of a rest, inside the average's half-width";
+      continue;
+    }
+    ASSERT_FALSE(std::isnan(c[i])) << "sample " << i - begin << " of a rest";
+    ++in_rest;
+    if (i < stop.end) {
+      if (i + half < stop.end) EXPECT_NEAR(l[i] - c[i], 0.0, 1e-12) << "a held offset is no change at rest (sample " << i - begin << ")";
+    } else if (i + half < t.size()) {
+      const double expected = r[i] - r[begin + half + (w - 1) / 2] - (w % 2 == 0 ? 0.5 * creep_kip_per_s * t.dt_s : 0.0);
+      EXPECT_NEAR(l[i] - c[i], expected, 1e-9) << "the creep since the level's window (sample " << i - begin << ")";
+    }
+  }
+  EXPECT_GT(in_rest, 1500u);
 }
 
 }  // namespace
