@@ -39,7 +39,7 @@ double passive_window_end_s(const DiagnoseRecord& r, const DiagnoseOptions& o) {
 // The base of a record for "before"/"after": identified on its passive window exactly as
 // `damper predict` does (identify), or `p` as is (model).
 BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const DiagnoseOptions& o, double* window_rmse,
-                       std::string* not_identified = nullptr) {
+                       std::string* not_identified = nullptr, std::string* identification_note = nullptr) {
   BrfdParams b = for_record(p, r.test);
   if (o.base != BaseSource::identify) return b;
   IdentificationOptions io = o.base_identification;
@@ -54,6 +54,7 @@ BrfdParams record_base(const DiagnoseRecord& r, const BrfdParams& p, const Diagn
   const IdentificationResult id = identify_lugre(r.test, b, io);
   if (window_rmse) *window_rmse = id.residual.rmse_kip;
   if (not_identified && !id.identified) *not_identified = id.note;
+  if (identification_note && id.identified) *identification_note = id.note;  // e.g. Fs/Fc kept (min_stribeck_speeds)
   return id.params;
 }
 
@@ -83,9 +84,9 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
   }
   std::vector<BrfdParams> bases(n_records);
   std::vector<double> window_rmses(n_records, 0.0);
-  std::vector<std::string> not_identifieds(n_records);
+  std::vector<std::string> not_identifieds(n_records), identification_notes(n_records);
   common::parallel_for(n_records, o.threads, [&](std::size_t m) {
-    bases[m] = record_base(recs[m], model, o, &window_rmses[m], &not_identifieds[m]);
+    bases[m] = record_base(recs[m], model, o, &window_rmses[m], &not_identifieds[m], &identification_notes[m]);
   });
   for (std::size_t m = 0; m < n_records; ++m) {
     const DiagnoseRecord& r = recs[m];
@@ -98,7 +99,8 @@ std::vector<DiagnoseRecord> load_records(const DiagnoseOptions& o, const BrfdPar
       log(r.test.name() + ": base LuGre from the model file (" + not_identified + ")");
     else if (o.base == BaseSource::identify)
       log(r.test.name() + ": base LuGre identified on the passive window 0-" + format_significant(t_passive, 4) + " s (residual there " +
-          format_significant(window_rmse, 4) + " kip RMSE)");
+          format_significant(window_rmse, 4) + " kip RMSE)" +
+          (identification_notes[m].empty() ? std::string() : "; " + identification_notes[m]));
     double train_s = 0.0, held_s = 0.0;
     for (std::uint8_t t : r.seg.train) (t ? train_s : held_s) += r.test.dt_s;
     std::ostringstream sp;

@@ -374,13 +374,23 @@ LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const B
   // as record_base): a window of 0.3 s at the start of a stroke fixes nothing, and a block fitted on
   // it gave an outside author's records NRMSE 0.54 where the model file's LuGre gives 0.16. None:
   // the model file's block.
+  // As identify_lugre, a direction's Fs/Fc (and v_s when both) is kept at the model file's where
+  // no usable window slides fast enough to show the Stribeck curve and a record goes faster later
+  // (IdentificationOptions::min_stribeck_speeds).
   std::vector<DiagnoseRecord> usable;
+  bool slow_fwd = true, slow_bwd = true, faster_fwd = false, faster_bwd = false;
   for (const DiagnoseRecord& r : recs) {
     const BrfdParams p = for_record(model, r.test);
     IdentificationOptions io;
     io.t0_s = r.test.time_s.front();
     io.t1_s = r.seg.passive_end < r.test.size() ? r.test.time_s[r.seg.passive_end] : r.test.time_s.back() + r.test.dt_s;
-    if (window_does_not_identify(r.test, p, io).empty()) usable.push_back(r);
+    if (!window_does_not_identify(r.test, p, io).empty()) continue;
+    usable.push_back(r);
+    const StribeckShown sh = stribeck_shown(r.test, 0, std::max<std::size_t>(2, r.seg.passive_end), p, io);
+    slow_fwd = slow_fwd && sh.window_fwd_in_per_s < sh.shows_in_per_s;
+    slow_bwd = slow_bwd && sh.window_bwd_in_per_s < sh.shows_in_per_s;
+    faster_fwd = faster_fwd || sh.test_fwd_in_per_s > sh.window_fwd_in_per_s;
+    faster_bwd = faster_bwd || sh.test_bwd_in_per_s > sh.window_bwd_in_per_s;
   }
   if (usable.empty()) return model.lugre;
   Joint j{&usable, model, e, INFINITY, model.lugre};
@@ -394,6 +404,11 @@ LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const B
                            g.fc_fwd_kip, g.fc_bwd_kip, g.fs_fwd_kip / g.fc_fwd_kip, g.fs_bwd_kip / g.fc_bwd_kip,
                            std::log10(g.vs_in_per_s)};
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = std::clamp(x[k], lo[k], hi[k]);
+  // Kept entries: lower = upper bound (NLopt searches the other dimensions).
+  const bool keep_fwd = slow_fwd && faster_fwd, keep_bwd = slow_bwd && faster_bwd;
+  for (std::size_t k : {std::size_t{5}, std::size_t{6}, std::size_t{7}}) {
+    if ((k == 5 && keep_fwd) || (k == 6 && keep_bwd) || (k == 7 && keep_fwd && keep_bwd)) lo[k] = hi[k] = x[k];
+  }
   nlopt::opt opt(nlopt::LN_BOBYQA, 8);
   opt.set_lower_bounds(lo);
   opt.set_upper_bounds(hi);

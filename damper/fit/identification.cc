@@ -96,6 +96,36 @@ std::string window_does_not_identify(const BrfdTest& test, const BrfdParams& sta
   return "";
 }
 
+StribeckShown stribeck_shown(const BrfdTest& test, std::size_t begin, std::size_t end, const BrfdParams& start,
+                             const IdentificationOptions& opt) {
+  StribeckShown s;
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    const double v = test.drum_vel_in_per_s[i];
+    const bool inside = i >= begin && i < end;
+    double& fwd = inside ? s.window_fwd_in_per_s : s.test_fwd_in_per_s;
+    double& bwd = inside ? s.window_bwd_in_per_s : s.test_bwd_in_per_s;
+    fwd = std::max(fwd, v);
+    bwd = std::max(bwd, -v);
+  }
+  s.min_speeds = opt.min_stribeck_speeds;
+  s.shows_in_per_s = opt.min_stribeck_speeds * start.lugre.vs_in_per_s;
+  s.keep_fwd = s.window_fwd_in_per_s < s.shows_in_per_s && s.test_fwd_in_per_s > s.window_fwd_in_per_s;
+  s.keep_bwd = s.window_bwd_in_per_s < s.shows_in_per_s && s.test_bwd_in_per_s > s.window_bwd_in_per_s;
+  s.keep_vs = s.keep_fwd && s.keep_bwd;
+  return s;
+}
+
+std::string StribeckShown::note() const {
+  if (!keep_fwd && !keep_bwd) return "";
+  std::ostringstream o;
+  o << std::setprecision(3) << "the window's peak speed";
+  if (keep_fwd) o << " forward " << window_fwd_in_per_s << " in/s (the test reaches " << test_fwd_in_per_s << ")";
+  if (keep_bwd) o << (keep_fwd ? " and" : "") << " backward " << window_bwd_in_per_s << " in/s (the test reaches " << test_bwd_in_per_s << ")";
+  o << " stays below " << min_speeds << " v_s = " << shows_in_per_s << " in/s, where the Stribeck curve reaches the kinetic level: Fs/Fc" << (keep_fwd && keep_bwd ? " both ways" : keep_fwd ? " forward" : " backward")
+    << (keep_vs ? " and v_s" : "") << " kept at the start's, the level fitted";
+  return o.str();
+}
+
 IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& start,
                                     const IdentificationOptions& opt) {
   const std::size_t begin = index_at_time(test, opt.t0_s);
@@ -115,6 +145,11 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
     return r;
   }
 
+  // Which of the search vector's entries the window's speeds identify (min_stribeck_speeds):
+  // entries 5 and 6 are Fs/Fc forward and backward, 7 is log10 v_s.
+  const StribeckShown shown = stribeck_shown(test, begin, end, start, opt);
+  const bool keep_fwd = shown.keep_fwd, keep_bwd = shown.keep_bwd, keep_vs = shown.keep_vs;
+
   const LugreBounds& b = opt.bounds;
   const std::vector<double> lo = {std::log10(b.sigma0_min), b.sigma1_min, b.sigma2_min, b.fc_min,
                                   b.fc_min, b.fs_ratio_min, b.fs_ratio_min, std::log10(b.vs_min)};
@@ -133,15 +168,35 @@ IdentificationResult identify_lugre(const BrfdTest& test, const BrfdParams& star
     }
     return std::sqrt(se / static_cast<double>(end - begin));
   };
+  // The search runs over the free entries; the kept ones stay at the start's values.
+  const std::vector<double> full_start = pack(start.lugre);
+  std::vector<std::size_t> free_entries;
+  for (std::size_t k = 0; k < full_start.size(); ++k)
+    if (!(k == 5 && keep_fwd) && !(k == 6 && keep_bwd) && !(k == 7 && keep_vs)) free_entries.push_back(k);
+  const auto full_of = [&](const std::vector<double>& y) {
+    std::vector<double> x = full_start;
+    for (std::size_t j = 0; j < free_entries.size(); ++j) x[free_entries[j]] = y[j];
+    return x;
+  };
+  std::vector<double> y_start, y_lo, y_hi;
+  for (std::size_t k : free_entries) {
+    y_start.push_back(full_start[k]);
+    y_lo.push_back(lo[k]);
+    y_hi.push_back(hi[k]);
+  }
   const StagedSearchResult found =
-      staged_search(rmse, pack(start.lugre), lo, hi,
+      staged_search([&](const std::vector<double>& y) { return rmse(full_of(y)); }, y_start, y_lo, y_hi,
                     {opt.global_max_evals, opt.global_runs, opt.local_max_evals, opt.seed, 1e-7});
 
   BrfdParams fitted = start;
-  fitted.lugre = lugre_from_search_vector(found.x);
+  fitted.lugre = lugre_from_search_vector(full_of(found.x));
   IdentificationResult r = result_on_window(fitted, test, begin, end, opt.replay);
   r.evaluations = found.evaluations;
   r.algorithm = found.algorithm;
+  r.stribeck_kept_fwd = keep_fwd;
+  r.stribeck_kept_bwd = keep_bwd;
+  r.vs_kept = keep_vs;
+  r.note = shown.note();
   return r;
 }
 
@@ -153,7 +208,7 @@ std::string describe(const IdentificationResult& r) {
     o << "NOT identified: " << r.note << "\n";
   else
     o << "identified on [" << r.t0_s << ", " << r.t1_s << ") s with " << r.algorithm << ", " << r.evaluations
-      << " evaluations\n";
+      << " evaluations\n" << (r.note.empty() ? "" : "  " + r.note + "\n");
   o
     << "  sigma0 = " << g.sigma0_kip_per_in << " kip/in\n"
     << "  sigma1 = " << g.sigma1_kip_s_per_in << " kip s/in\n"

@@ -282,7 +282,9 @@ TEST(DiagnoseData, LevelAtAStopIsTakenOnceTheAverageHasLeftTheStroke) {
     ASSERT_FALSE(std::isnan(c[i])) << "sample " << i - begin << " of a rest";
     ++in_rest;
     if (i < stop.end) {
-      if (i + half < stop.end) EXPECT_NEAR(l[i] - c[i], 0.0, 1e-12) << "a held offset is no change at rest (sample " << i - begin << ")";
+      if (i + half < stop.end) {
+        EXPECT_NEAR(l[i] - c[i], 0.0, 1e-12) << "a held offset is no change at rest (sample " << i - begin << ")";
+      }
     } else if (i + half < t.size()) {
       const double expected = r[i] - r[begin + half + (w - 1) / 2] - (w % 2 == 0 ? 0.5 * creep_kip_per_s * t.dt_s : 0.0);
       EXPECT_NEAR(l[i] - c[i], expected, 1e-9) << "the creep since the level's window (sample " << i - begin << ")";

@@ -114,6 +114,83 @@ TEST(Identification, KeepsTheStartParametersWhereTheDrumBarelyMoves) {
   EXPECT_THROW(identify_lugre(t, start, o), std::invalid_argument);
 }
 
+// A window whose drum stays slow in a direction measures only the top of that direction's Stribeck
+// curve, g(v) = Fc + (Fs - Fc) e^(-(v/v_s)^2): below 1.5 v_s Fc and Fs/Fc trade off, and a free fit
+// extrapolates the later fast strokes from that trade (a blind record's window at 0.99 in/s forward
+// fitted Fs/Fc = 1, its bound, and predicted its 2.6 in/s strokes 2 kip high). Truth: the start's
+// Stribeck shape (Fs/Fc 7/3 and 4/1.6, v_s 1 in/s) with every force level 20 % higher. The record:
+// 8 s of 0.5 in, 0.2 Hz strokes (peak 0.63 in/s) then 6 s of 1 in, 0.5 Hz (3.14 in/s). Identified
+// on the first 8 s: Fs/Fc both ways and v_s are kept at the start's exactly, the levels are fitted
+// (Fc to 3 %), and the fast strokes it never saw are predicted to 2 % of the force range. Over the
+// whole record (which shows the curve) nothing is kept, nor over a slow record's own length (no
+// extrapolation). Fails if the guard is removed (nothing kept) or keeps a ratio the window shows.
+TEST(Identification, KeepsTheStribeckShapeWhereTheWindowNeverSlidesFast) {
+  BrfdParams start;
+  start.kind = DamperKind::passive_lugre;
+  start.lugre = {18.0, 0.05, 0.4, 7.0, 4.0, 3.0, 1.6, 1.0};  // σ0 σ1 σ2 Fs± Fc± vs
+  BrfdParams truth = start;
+  truth.lugre.fs_fwd_kip *= 1.2;
+  truth.lugre.fs_bwd_kip *= 1.2;
+  truth.lugre.fc_fwd_kip *= 1.2;
+  truth.lugre.fc_bwd_kip *= 1.2;
+  BrfdTest t;
+  t.path = "slow-then-fast.json";
+  t.dt_s = 1.0 / 1024.0;
+  const double slow_s = 8.0, total_s = 14.0;
+  for (int k = 0; k < static_cast<int>(total_s * 1024); ++k) {
+    const double time = k * t.dt_s;
+    const bool slow = time < slow_s;
+    const double amp_in = slow ? 0.5 : 1.0, hz = slow ? 0.2 : 0.5, phase = 2.0 * M_PI * hz * (slow ? time : time - slow_s);
+    t.time_s.push_back(time);
+    t.drum_disp_in.push_back(amp_in * std::sin(phase));
+    t.drum_vel_in_per_s.push_back(amp_in * 2.0 * M_PI * hz * std::cos(phase));
+    t.force_kip.push_back(0.0);
+    t.actuator1_force_lb.push_back(0.0);
+    t.actuator2_force_lb.push_back(0.0);
+  }
+  ReplayOptions zero_start;
+  zero_start.initial_bristle_from_force = false;
+  t.force_kip = replay_force_kip(truth, t, 0, t.size(), zero_start);
+  IdentificationOptions o;
+  o.t1_s = slow_s;
+  o.global_runs = 1;
+  const IdentificationResult r = identify_lugre(t, start, o);
+  std::cout << describe(r) << "\n";
+  ASSERT_TRUE(r.identified);
+  EXPECT_TRUE(r.stribeck_kept_fwd);
+  EXPECT_TRUE(r.stribeck_kept_bwd);
+  EXPECT_TRUE(r.vs_kept);
+  EXPECT_NE(r.note.find("kept at the start's"), std::string::npos) << r.note;
+  const LugreParams& g = r.params.lugre;
+  EXPECT_NEAR(g.fs_fwd_kip / g.fc_fwd_kip, 7.0 / 3.0, 1e-12);
+  EXPECT_NEAR(g.fs_bwd_kip / g.fc_bwd_kip, 4.0 / 1.6, 1e-12);
+  EXPECT_EQ(g.vs_in_per_s, 1.0);
+  EXPECT_NEAR(g.fc_fwd_kip, 3.6, 0.03 * 3.6);
+  EXPECT_NEAR(g.fc_bwd_kip, 1.92, 0.03 * 1.92);
+  // The fast strokes the window never saw.
+  const std::size_t fast = static_cast<std::size_t>(slow_s * 1024);
+  const std::vector<double> f = replay_force_kip(r.params, t, 0, t.size(), zero_start);
+  double se = 0.0, lo = 1e9, hi = -1e9;
+  for (std::size_t i = fast; i < t.size(); ++i) {
+    se += (f[i] - t.force_kip[i]) * (f[i] - t.force_kip[i]);
+    lo = std::min(lo, t.force_kip[i]);
+    hi = std::max(hi, t.force_kip[i]);
+  }
+  EXPECT_LT(std::sqrt(se / static_cast<double>(t.size() - fast)), 0.02 * (hi - lo));
+  // The whole record shows the curve both ways: nothing kept.
+  o.t1_s = total_s;
+  const IdentificationResult all = identify_lugre(t, start, o);
+  EXPECT_FALSE(all.stribeck_kept_fwd || all.stribeck_kept_bwd || all.vs_kept) << all.note;
+  // A slow record fitted over its own length extrapolates nothing: nothing kept.
+  BrfdTest slow = t;
+  for (auto* c : {&slow.time_s, &slow.drum_disp_in, &slow.drum_vel_in_per_s, &slow.force_kip, &slow.actuator1_force_lb,
+                  &slow.actuator2_force_lb})
+    c->resize(fast);
+  o.t1_s = slow_s;
+  const IdentificationResult own = identify_lugre(slow, start, o);
+  EXPECT_FALSE(own.stribeck_kept_fwd || own.stribeck_kept_bwd || own.vs_kept) << own.note;
+}
+
 TEST(Identification, FitsTheMeasuredCharacterizationTest) {
   const std::string file = std::string(BRFD_SHARED_DIR) +
                            "/data/brfd/characterization/0.5Hz30lbtension1amplitude.json";
