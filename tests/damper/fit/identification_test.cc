@@ -6,22 +6,28 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
+#include <string>
+#include <utility>
 
 namespace damper {
 namespace {
 
-BrfdTest synthetic_test(const BrfdParams& truth, double seconds) {
+// A passive test of `seconds` at 1024 Hz whose drum follows motion(t) = {displacement in, velocity
+// in/s}, its force replayed through `truth` from a relaxed bristle.
+BrfdTest passive_test(const BrfdParams& truth, double seconds, const std::string& path,
+                      const std::function<std::pair<double, double>(double)>& motion) {
   BrfdTest t;
-  t.path = "synthetic.json";
+  t.path = path;
   t.dt_s = 1.0 / 1024.0;
   const int n = static_cast<int>(seconds * 1024);
   for (int k = 0; k < n; ++k) {
     const double time = k * t.dt_s;
-    const double ramp = std::min(1.0, time / 1.0);  // ramped like the lab tests
+    const auto [disp_in, vel_in_per_s] = motion(time);
     t.time_s.push_back(time);
-    t.drum_disp_in.push_back(ramp * std::sin(M_PI * time));
-    t.drum_vel_in_per_s.push_back(ramp * M_PI * std::cos(M_PI * time) + (time < 1.0 ? std::sin(M_PI * time) : 0.0));
+    t.drum_disp_in.push_back(disp_in);
+    t.drum_vel_in_per_s.push_back(vel_in_per_s);
     t.force_kip.push_back(0.0);
     t.actuator1_force_lb.push_back(0.0);
     t.actuator2_force_lb.push_back(0.0);
@@ -30,6 +36,14 @@ BrfdTest synthetic_test(const BrfdParams& truth, double seconds) {
   zero_start.initial_bristle_from_force = false;
   t.force_kip = replay_force_kip(truth, t, 0, t.size(), zero_start);
   return t;
+}
+
+BrfdTest synthetic_test(const BrfdParams& truth, double seconds) {
+  return passive_test(truth, seconds, "synthetic.json", [](double time) {
+    const double ramp = std::min(1.0, time / 1.0);  // ramped like the lab tests
+    return std::make_pair(ramp * std::sin(M_PI * time),
+                          ramp * M_PI * std::cos(M_PI * time) + (time < 1.0 ? std::sin(M_PI * time) : 0.0));
+  });
 }
 
 TEST(Identification, RecoversKnownParametersFromSyntheticPassiveData) {
@@ -133,24 +147,14 @@ TEST(Identification, KeepsTheStribeckShapeWhereTheWindowNeverSlidesFast) {
   truth.lugre.fs_bwd_kip *= 1.2;
   truth.lugre.fc_fwd_kip *= 1.2;
   truth.lugre.fc_bwd_kip *= 1.2;
-  BrfdTest t;
-  t.path = "slow-then-fast.json";
-  t.dt_s = 1.0 / 1024.0;
   const double slow_s = 8.0, total_s = 14.0;
-  for (int k = 0; k < static_cast<int>(total_s * 1024); ++k) {
-    const double time = k * t.dt_s;
+  const BrfdTest t = passive_test(truth, total_s, "slow-then-fast.json", [&](double time) {
     const bool slow = time < slow_s;
     const double amp_in = slow ? 0.5 : 1.0, hz = slow ? 0.2 : 0.5, phase = 2.0 * M_PI * hz * (slow ? time : time - slow_s);
-    t.time_s.push_back(time);
-    t.drum_disp_in.push_back(amp_in * std::sin(phase));
-    t.drum_vel_in_per_s.push_back(amp_in * 2.0 * M_PI * hz * std::cos(phase));
-    t.force_kip.push_back(0.0);
-    t.actuator1_force_lb.push_back(0.0);
-    t.actuator2_force_lb.push_back(0.0);
-  }
+    return std::make_pair(amp_in * std::sin(phase), amp_in * 2.0 * M_PI * hz * std::cos(phase));
+  });
   ReplayOptions zero_start;
   zero_start.initial_bristle_from_force = false;
-  t.force_kip = replay_force_kip(truth, t, 0, t.size(), zero_start);
   IdentificationOptions o;
   o.t1_s = slow_s;
   o.global_runs = 1;
