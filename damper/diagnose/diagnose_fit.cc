@@ -389,8 +389,8 @@ LugreParams joint_passive_lugre(const std::vector<DiagnoseRecord>& recs, const B
     const StribeckShown sh = stribeck_shown(r.test, 0, std::max<std::size_t>(2, r.seg.passive_end), p, io);
     slow_fwd = slow_fwd && sh.window_fwd_in_per_s < sh.shows_in_per_s;
     slow_bwd = slow_bwd && sh.window_bwd_in_per_s < sh.shows_in_per_s;
-    faster_fwd = faster_fwd || sh.test_fwd_in_per_s > sh.window_fwd_in_per_s;
-    faster_bwd = faster_bwd || sh.test_bwd_in_per_s > sh.window_bwd_in_per_s;
+    faster_fwd = faster_fwd || sh.keep_fwd;  // slow here and faster later
+    faster_bwd = faster_bwd || sh.keep_bwd;
   }
   if (usable.empty()) return model.lugre;
   Joint j{&usable, model, e, INFINITY, model.lugre};

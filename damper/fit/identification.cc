@@ -109,8 +109,9 @@ StribeckShown stribeck_shown(const BrfdTest& test, std::size_t begin, std::size_
   }
   s.min_speeds = opt.min_stribeck_speeds;
   s.shows_in_per_s = opt.min_stribeck_speeds * start.lugre.vs_in_per_s;
-  s.keep_fwd = s.window_fwd_in_per_s < s.shows_in_per_s && s.test_fwd_in_per_s > s.window_fwd_in_per_s;
-  s.keep_bwd = s.window_bwd_in_per_s < s.shows_in_per_s && s.test_bwd_in_per_s > s.window_bwd_in_per_s;
+  const double faster = opt.stribeck_extrapolation_ratio;
+  s.keep_fwd = s.window_fwd_in_per_s < s.shows_in_per_s && s.test_fwd_in_per_s > faster * s.window_fwd_in_per_s;
+  s.keep_bwd = s.window_bwd_in_per_s < s.shows_in_per_s && s.test_bwd_in_per_s > faster * s.window_bwd_in_per_s;
   s.keep_vs = s.keep_fwd && s.keep_bwd;
   return s;
 }

@@ -58,6 +58,11 @@ struct IdentificationOptions {
   /// gives the level). The measured semi-active windows reach 3.2 in/s both ways (2.5 v_s) and
   /// are unchanged.
   double min_stribeck_speeds = 1.5;
+  /// ... and "the test goes faster" means its peak speed outside the window, in that direction,
+  /// exceeds the window's by this factor: a test whose strokes stay within 25 % of the window's
+  /// speeds is predicted from measured parts of the curve (a config with v_s = 5 in/s, the search's
+  /// bound, would otherwise keep its shape on the measured windows, 3.19 in/s, whose tests reach 3.25).
+  double stribeck_extrapolation_ratio = 1.25;
   ReplayOptions replay;
 };
 
@@ -86,7 +91,8 @@ DrumExcursion drum_excursion(const BrfdTest& test, std::size_t begin, std::size_
 /// What a window's speeds show of the Stribeck curve (IdentificationOptions::min_stribeck_speeds):
 /// its peak speed per direction, the test's outside it, and which of Fs/Fc (per direction) and v_s
 /// are kept at the start's: a direction whose window stays below min_stribeck_speeds v_s (of
-/// `start`) while the test outside goes faster; v_s when both are kept.
+/// `start`) while the test outside goes stribeck_extrapolation_ratio times faster; v_s when both
+/// are kept.
 struct StribeckShown {
   double window_fwd_in_per_s = 0.0, window_bwd_in_per_s = 0.0;  ///< peak speed in [begin, end)
   double test_fwd_in_per_s = 0.0, test_bwd_in_per_s = 0.0;      ///< peak speed outside it
