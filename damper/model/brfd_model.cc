@@ -55,6 +55,17 @@ double stretched_clamp_term_kip(double term_kip, double gain_kip_per_in, double 
   return g * std::expm1(std::min(beta_per_in * travel_in, 30.0)) / beta_per_in;
 }
 
+// The same term under pretension's symmetric stretch law (clamp_saturation_per_in = kappa, 1/in):
+// |g| tanh(kappa t)/kappa (kappa > 0: saturating alike tightening and releasing) or
+// |g| sinh(-kappa t)/(-kappa) (kappa < 0: stiffening alike); slope |g| at t = 0 (effects.h).
+double saturated_clamp_term_kip(double term_kip, double gain_kip_per_in, double kappa_per_in) {
+  const double g = std::abs(gain_kip_per_in);
+  if (g <= 0.0) return term_kip;
+  const double travel_in = term_kip / g;
+  if (kappa_per_in > 0.0) return g * std::tanh(kappa_per_in * travel_in) / kappa_per_in;
+  return g * std::sinh(std::clamp(-kappa_per_in * travel_in, -30.0, 30.0)) / -kappa_per_in;
+}
+
 }  // namespace
 
 BrfdModel::BrfdModel(const BrfdParams& params)
@@ -164,7 +175,8 @@ double BrfdModel::bank_sum_kip() const {
 
 double BrfdModel::rate_factor(double speed) const {
   const VelocityEffect* ve = params_.effects.velocity ? &*params_.effects.velocity : nullptr;
-  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0 && ve->flash_weakening == 0.0 && ve->peak_share == 0.0))
+  if (!ve || (ve->rate_slope == 0.0 && ve->direct_slope == 0.0 && ve->flash_weakening == 0.0 && ve->peak_share == 0.0 &&
+              ve->speed_power_share == 0.0))
     return 1.0;
   // Flash heating above v_w: × (1 − a_w (1 − v_w/|v|)).
   double flash = ve->flash_weakening != 0.0 && speed > ve->weakening_speed_in_per_s
@@ -174,6 +186,8 @@ double BrfdModel::rate_factor(double speed) const {
     const double decades = std::log(speed / ve->peak_speed_in_per_s) / ve->peak_log_width;
     flash *= 1.0 + ve->peak_share * std::exp(-0.5 * decades * decades);
   }
+  // A power law of the speed (third body): × (1 + B (|v| / 1 in/s)^m), effects.h.
+  if (ve->speed_power_share != 0.0) flash *= 1.0 + ve->speed_power_share * std::pow(speed, ve->speed_power_exponent);
   if (ve->rate_slope == 0.0 && ve->direct_slope == 0.0) return std::max(0.2, flash);
   const double now = speed + VelocityEffect::kSpeedFloorInPerS;
   const double seen = ve->memory_in > 0.0 ? ve->memory_in / rate_state_s_ : now;
@@ -254,6 +268,10 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     if (e.pretension && e.pretension->clamp_stiffening_per_in != 0.0) {
       term1 = stretched_clamp_term_kip(term1, gain1, e.pretension->clamp_stiffening_per_in);
       term2 = stretched_clamp_term_kip(term2, gain2, e.pretension->clamp_stiffening_per_in);
+    }
+    if (e.pretension && e.pretension->clamp_saturation_per_in != 0.0) {  // alike both ways (effects.h)
+      term1 = saturated_clamp_term_kip(term1, gain1, e.pretension->clamp_saturation_per_in);
+      term2 = saturated_clamp_term_kip(term2, gain2, e.pretension->clamp_saturation_per_in);
     }
     dfc = term1 + term2;
     // pretension's Fung law on the tension ratio: ΔFc → (b/γ)(e^(γ ΔFc/b) − 1) (effects.h)

@@ -115,7 +115,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "reference_speed_in_per_s", "memory_in", "direct_slope", "quadratic_viscous_kip_s2_per_in2",
                   "stribeck_lag_s", "viscous_exponent", "lag_viscous_share", "flash_weakening", "weakening_speed_in_per_s",
                   "flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share", "rate_regularization",
-                  "rate_stiction_share", "peak_share", "peak_speed_in_per_s", "peak_log_width"});
+                  "rate_stiction_share", "peak_share", "peak_speed_in_per_s", "peak_log_width", "speed_power_share",
+                  "speed_power_exponent"});
     VelocityEffect x;
     x.stribeck_exponent = v.get_double_in("stribeck_exponent", 2.0, 0.1, 20.0);
     x.viscous_kip_s_per_in = v.get_double_in("viscous_kip_s_per_in", 0.0, -100.0, 100.0);
@@ -138,13 +139,15 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.peak_share = v.get_double_in("peak_share", 0.0, -0.9, 5.0);
     x.peak_speed_in_per_s = v.get_double_in("peak_speed_in_per_s", 1.0, 1e-3, 1e3);
     x.peak_log_width = v.get_double_in("peak_log_width", 1.0, 0.05, 10.0);
+    x.speed_power_share = v.get_double_in("speed_power_share", 0.0, -0.9, 5.0);
+    x.speed_power_exponent = v.get_double_in("speed_power_exponent", 0.5, 0.02, 5.0);
     e.velocity = x;
   }
   if (s.has("pretension")) {
     const common::YamlSection p = s.section("pretension");
     p.allow_only({"fs_share", "instant_share", "wear_per_kip_in", "clamp_exponent", "wear_saturation_kip_in",
                   "wear_recovery_per_s", "wear_actuator_share", "clamp_gain", "actuator_coupling_kip_per_in2",
-                  "release_gain", "clamp_stiffening_per_in", "clamp_stiffening_per_tension"});
+                  "release_gain", "clamp_stiffening_per_in", "clamp_stiffening_per_tension", "clamp_saturation_per_in"});
     PretensionEffect x;
     x.fs_share = p.get_double_in("fs_share", 0.0, -10.0, 10.0);
     x.instant_share = p.get_double_in("instant_share", 0.0, 0.0, 1.0);
@@ -158,6 +161,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.actuator_coupling_kip_per_in2 = p.get_double_in("actuator_coupling_kip_per_in2", 0.0, -1e6, 1e6);
     x.clamp_stiffening_per_in = p.get_double_in("clamp_stiffening_per_in", 0.0, -200.0, 200.0);
     x.clamp_stiffening_per_tension = p.get_double_in("clamp_stiffening_per_tension", 0.0, -20.0, 20.0);
+    x.clamp_saturation_per_in = p.get_double_in("clamp_saturation_per_in", 0.0, -200.0, 200.0);
     e.pretension = x;
   }
   if (s.has("self_energizing")) {
@@ -449,7 +453,9 @@ std::vector<EffectSpec> build_library() {
       "phi = 1 + a ln((|v| + 0.01)/v_r) + s ln(v~/v_r), v~ = |v| + 0.01 "
       "seen through the aging law over a slip distance D; levels x (1 - a_w (1 - v_w/|v|)) above v_w (flash heating), "
       "Fc x phi_T, Fs x (1 - w_T + w_T phi_T), phi_T = 1 - c Fc |v|^n_T (flash temperature by the load); "
-      "phi x (1 + A exp(-ln^2(|v|/v_p)/(2 w^2))) (a friction peak over log speed, Grosch) (config-only: + c_v |v| in g)",
+      "phi x (1 + A exp(-ln^2(|v|/v_p)/(2 w^2))) (a friction peak over log speed, Grosch) "
+      "x (1 + B |v|^m) (B = speed_power_share, m = speed_power_exponent: a power law of the speed, third body) "
+      "(config-only: + c_v |v| in g)",
       {{"stribeck_exponent", 0.5, 8.0, 2.0, 4.0, true},
        {"added_viscous_kip_s_per_in", -0.6, 0.6, 0.0, 0.1, false},
        {"rate_slope", -0.8, 0.8, 0.0, -0.05, false},
@@ -469,7 +475,9 @@ std::vector<EffectSpec> build_library() {
        {"rate_stiction_share", 0.0, 1.0, 1.0, 0.5, false, true},
        {"peak_share", -0.5, 0.8, 0.0, 0.15, false},
        {"peak_speed_in_per_s", 0.05, 10.0, 1.0, 1.0, true},
-       {"peak_log_width", 0.2, 3.0, 1.0, 1.0, true}},
+       {"peak_log_width", 0.2, 3.0, 1.0, 1.0, true},
+       {"speed_power_share", -0.5, 0.8, 0.0, 0.1, false},
+       {"speed_power_exponent", 0.1, 3.0, 0.5, 1.0, true}},
       &ModelEffects::velocity,
       std::function<VelocityEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         VelocityEffect v;
@@ -493,6 +501,8 @@ std::vector<EffectSpec> build_library() {
         v.peak_share = t[17];
         v.peak_speed_in_per_s = t[18];
         v.peak_log_width = t[19];
+        v.speed_power_share = t[20];
+        v.speed_power_exponent = t[21];
         return v;
       }),
       std::function<std::vector<double>(const VelocityEffect&)>([](const VelocityEffect& v) {
@@ -502,14 +512,17 @@ std::vector<EffectSpec> build_library() {
                                    v.lag_viscous_share, v.flash_weakening, v.weakening_speed_in_per_s,
                                    v.flash_load_per_kip, v.flash_speed_exponent, v.flash_stiction_share,
                                    v.rate_regularization, v.rate_stiction_share, v.peak_share,
-                                   v.peak_speed_in_per_s, v.peak_log_width};
+                                   v.peak_speed_in_per_s, v.peak_log_width, v.speed_power_share,
+                                   v.speed_power_exponent};
       })));
   lib.push_back(make_spec<std::optional<PretensionEffect> ModelEffects::*, PretensionEffect>(
       "pretension", "friction follows the band pre-tension: set by the actuators (Fs too; band force scales at once), lost as the lining wears",
       "N = (b + dFc)/b; Fs = Fs0 (1 + fs_share dFc/b); F = N_l S(z) + ..., dz/dt = v - |v| N_l S(z)/g, N_l = 1 + instant_share (N - 1); "
       "Fc = psi b + (1 - u (1 - psi)) dFc, Fs x psi, psi = 1 - wear W0 (1 - exp(-W/W0)), dW/dt = |F v| - k_r W (W0 = wear_saturation, k_r = wear_recovery: thermal fade, u = wear_actuator_share); clamping law dFc = k b (N^q - 1) (q = clamp_exponent, k = clamp_gain), x release_gain where dFc < 0, + c u1 u2 (c = actuator_coupling, u_k = x_k - x'_k); "
       "band stretch law per actuator: g_k u_k -> |g_k| (exp(beta t_k) - 1)/beta, t_k = g_k u_k/|g_k| (beta = clamp_stiffening_per_in, before q); "
-      "on the tension ratio: dFc -> (b/gamma) (exp(gamma dFc/b) - 1) (gamma = clamp_stiffening_per_tension, after beta, before q)",
+      "symmetric band stretch law per actuator: g_k u_k -> |g_k| tanh(kappa t_k)/kappa (kappa = clamp_saturation_per_in > 0; "
+      "sinh for kappa < 0; after beta); "
+      "on the tension ratio: dFc -> (b/gamma) (exp(gamma dFc/b) - 1) (gamma = clamp_stiffening_per_tension, after kappa, before q)",
       {{"fs_share", -1.0, 3.0, 0.0, 1.0, false},
        {"instant_share", 0.0, 1.0, 0.0, 0.5, false},
        {"wear_per_kip_in", -0.02, 0.02, 0.0, 0.0005, false},
@@ -521,7 +534,8 @@ std::vector<EffectSpec> build_library() {
        {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false},
        {"release_gain", 0.2, 3.0, 1.0, 1.5, true},
        {"clamp_stiffening_per_in", -60.0, 60.0, 0.0, 15.0, false},
-       {"clamp_stiffening_per_tension", -6.0, 6.0, 0.0, 1.5, false}},
+       {"clamp_stiffening_per_tension", -6.0, 6.0, 0.0, 1.5, false},
+       {"clamp_saturation_per_in", -60.0, 60.0, 0.0, 15.0, false}},
       &ModelEffects::pretension,
       std::function<PretensionEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         PretensionEffect p;
@@ -537,13 +551,14 @@ std::vector<EffectSpec> build_library() {
         p.release_gain = t[9];
         p.clamp_stiffening_per_in = t[10];
         p.clamp_stiffening_per_tension = t[11];
+        p.clamp_saturation_per_in = t[12];
         return p;
       }),
       std::function<std::vector<double>(const PretensionEffect&)>([](const PretensionEffect& p) {
         return std::vector<double>{p.fs_share, p.instant_share, p.wear_per_kip_in, p.clamp_exponent,
                                    p.wear_saturation_kip_in, p.wear_recovery_per_s, p.wear_actuator_share, p.clamp_gain,
                                    p.actuator_coupling_kip_per_in2, p.release_gain, p.clamp_stiffening_per_in,
-                                   p.clamp_stiffening_per_tension};
+                                   p.clamp_stiffening_per_tension, p.clamp_saturation_per_in};
       })));
   lib.push_back(make_spec<std::optional<SelfEnergizingEffect> ModelEffects::*, SelfEnergizingEffect>(
       "self_energizing", "friction levels change with drum rotation (the drum draws the bands taut) and with the force the band carries (self-servo)",
@@ -706,7 +721,9 @@ std::vector<EffectSpec> build_library() {
                     {"flash_load_per_kip", "flash_speed_exponent"},                             // flash temperature by the load, on Fc
                     {"flash_load_per_kip", "flash_speed_exponent", "flash_stiction_share=1"},   // and on Fs alike
                     // a friction peak over log speed (viscoelastic lining, Grosch), on Fc
-                    {"peak_share", "peak_speed_in_per_s", "peak_log_width", "rate_stiction_share=0"}});
+                    {"peak_share", "peak_speed_in_per_s", "peak_log_width", "rate_stiction_share=0"},
+                    // a power law of the speed on both levels, both directions (third body)
+                    {"speed_power_share", "speed_power_exponent"}});
   // Wear and fade of the friction coefficient scale every level (u = 1); a thinner lining slackens
   // the band and loosens its own pre-tension only, the actuators keeping their increment (u = 0).
   mech("pretension", {{"fs_share", "instant_share"},
@@ -718,7 +735,10 @@ std::vector<EffectSpec> build_library() {
                       {"actuator_coupling_kip_per_in2"},  // the two actuators' clamping not additive
                       {"clamp_stiffening_per_in"},                 // each band's exponential stretch law (Fung)
                       {"clamp_stiffening_per_in", "clamp_gain"},   // and its slope at the pre-tension
-                      {"clamp_stiffening_per_tension"}});          // the same law on the tension ratio
+                      {"clamp_stiffening_per_tension"},            // the same law on the tension ratio
+                      {"clamp_saturation_per_in"},                 // each band's law alike both ways (tanh/sinh)
+                      // each band's law with its second- and third-order terms apart
+                      {"clamp_saturation_per_in", "clamp_stiffening_per_in"}});
   // The origin of the rotation d is a physical choice, not a blend: the bands tensioned where the
   // run started (drum_start_share = 1, the convention of Eq. (4)'s x') or at the drum's zero (0).
   // Each mechanism that counts the rotation is tried from each origin; only the whole family frees

@@ -240,6 +240,15 @@
 ///      φ × (1 + A exp(−ln²(|v|/v_p) / (2 w²)))
 ///    (A < 0 a dip; in the rate factor φ, so on Fc and on Fs by rate_stiction_share). Steady
 ///    sliding tested.
+///    A power law of the speed (speed_power_share = B, speed_power_exponent = m; twenty-fifth
+///    session): φ × (1 + B (|v| / 1 in/s)^m), the friction level strengthening (B > 0) or weakening
+///    with the sliding speed as a power, the same both directions — the empirical law of many
+///    lining materials, μ = μ0 (1 + B v^m) with m of 0.2-0.5 for a third-body (wear debris)
+///    layer sheared between band and drum (Godet 1984; brake-lining tests fit μ ∝ v^m, Ostermeyer
+///    2001). The logarithmic rate law above is its m → 0 limit only with a reference speed, and
+///    asymmetry's band_speed_slope is the same power on one band only (a difference between the
+///    directions). An outside author's symmetric power law (blind set 35 t11, m = 0.35, weak) was
+///    named none: the log law fitted one record and was worse on the other. Steady sliding tested.
 ///  - pretension (fs_share = β, instant_share = λ, wear_per_kip_in = w): friction follows the band
 ///    pre-tension, set by the actuators and lost as the lining wears. With N = (b + ΔFc)/b the
 ///    tension ratio of Eq. (4):
@@ -303,6 +312,17 @@
 ///    in N − 1 = ΔFc/b — a band whose tension stiffens with its total stretch, the curvature per kip
 ///    set by the direction's b (an outside author wrote it so, blind set 29 t11; with β alone, at its
 ///    bound, that trial's gap after was 0.0415 against 0.0278 with q and k). After β, before q.
+///    Symmetric stretch law per actuator (clamp_saturation_per_in = κ, 1/in; twenty-fifth session):
+///    β bends a band's law one way on each side of the pre-tension (its second- and third-order
+///    terms tied, β t²/2 + β² t³/6), so it cannot give a law that saturates (or stiffens) alike
+///    tightening and releasing — a band whose linkage, clamp spring or actuator drive yields the
+///    same both ways about its set point. κ is that odd (third-order) curvature on its own: the
+///    term g_k u_k becomes |g_k| tanh(κ t_k)/κ (κ > 0, saturating at |g_k|/κ both ways) or
+///    |g_k| sinh(|κ| t_k)/|κ| (κ < 0, stiffening both ways), slope g_k at the pre-tension, t_k as
+///    above. With β the law's second- and third-order terms are free apart. An outside author's
+///    tanh saturation of each actuator's travel (blind set 35 t08, weak) was named none: the power
+///    law q fitted one record and was worse on the other. After β, before γ and q. Steady sliding
+///    at a held travel, tested.
 ///  - self_energizing (drum_fwd_per_in = κ_f, drum_bwd_per_in = κ_b, drum_abs_per_in = μ, abs_exponent = p):
 ///    friction levels change with the drum rotation (the rotating drum draws the bands taut):
 ///    Fc, Fs × (1 + κ_dir d + μ |d|^p), κ_f for v ≥ 0, κ_b for v < 0 (μ: growth with the rotation
@@ -652,6 +672,10 @@ struct VelocityEffect {
   double peak_share = 0.0;
   double peak_speed_in_per_s = 1.0;  ///< v_p: speed of the peak, in/s (> 0)
   double peak_log_width = 1.0;       ///< w: its width, in natural-log units of the speed (> 0)
+  /// B: the rate factor φ × (1 + B (|v| / 1 in/s)^m), a power law of the speed on both
+  /// directions (third-body layer); 0 = none, < 0 weakening
+  double speed_power_share = 0.0;
+  double speed_power_exponent = 0.5;  ///< m (> 0)
 };
 /// Friction following the band pre-tension set by the actuators (see file comment).
 struct PretensionEffect {
@@ -680,6 +704,9 @@ struct PretensionEffect {
   /// γ: Fung's exponential on the tension ratio, ΔFc → (b/γ) (e^(γ ΔFc/b) − 1) of the two actuators'
   /// summed increment (0: Eq. 4's linear law), dimensionless
   double clamp_stiffening_per_tension = 0.0;
+  /// κ: each actuator's symmetric stretch law, 1/in of its tightening travel t: its Eq. (4) term
+  /// g u → |g| tanh(κ t)/κ (κ > 0, saturating both ways) or |g| sinh(−κ t)/(−κ) (κ < 0); 0: linear
+  double clamp_saturation_per_in = 0.0;
 };
 /// Friction levels changing with the drum rotation (see file comment).
 struct SelfEnergizingEffect {

@@ -2123,6 +2123,86 @@ TEST(Effects, ActuatorCouplingAddsTheProductOfTheTwoTravels) {
   }
 }
 
+// A power law of the speed (speed_power_share = B, speed_power_exponent = m) in steady sliding:
+// g = φ (Fc + (Fs − Fc) e^(−(v/v_s)²)), φ = 1 + B (|v| / 1 in/s)^m on both levels and both
+// directions alike. Fails with the law ignored, with |v| signed (backward), or with the exponent
+// dropped (B |v|).
+TEST(Effects, SpeedPowerLawScalesBothLevelsAlikeBothWays) {
+  BrfdParams p = synthetic_base();
+  p.kind = DamperKind::passive_lugre;
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  const double b = 0.3, m = 0.35;
+  p.effects.velocity = VelocityEffect{};
+  p.effects.velocity->speed_power_share = b;
+  p.effects.velocity->speed_power_exponent = m;
+  for (double v : {0.2, 0.8, 2.0, 4.0, -0.5, -3.0}) {
+    BrfdModel mdl(p);
+    DamperInput in;
+    in.drum_vel_in_per_s = v;
+    double f = 0.0;
+    for (int i = 0; i < 20000; ++i) f = mdl.step(in, 1e-4);
+    const double speed = std::abs(v);
+    const double phi = 1.0 + b * std::pow(speed, m);
+    const double fc = v > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = v > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+    const double r = speed / p.lugre.vs_in_per_s;
+    const double plain = fc + (fs - fc) * std::exp(-r * r), g = phi * plain;
+    ASSERT_GT(g - plain, 0.05) << "the law departs from Eq. (2) here";
+    EXPECT_NEAR(std::abs(f - p.lugre.sigma2_kip_s_per_in * v), g, 1e-6 * g) << v;
+  }
+}
+
+// Pretension's symmetric band stretch law (clamp_saturation_per_in = κ) in steady sliding at a
+// held setting (v >> v_s, σ1 = σ2 = 0): each actuator's Eq. (4) term T_k (the model without the
+// effect, that actuator alone moved) becomes |g_k| tanh(κ t_k)/κ (κ > 0) or |g_k| sinh(−κ t_k)/(−κ)
+// (κ < 0), t_k = T_k/|g_k|: an odd law, the same tightening and releasing. Fails with κ ignored,
+// with the law applied to the sum of the terms, or with the sinh branch's sign turned.
+TEST(Effects, EachBandsSymmetricStretchLawSaturatesAlikeBothWays) {
+  BrfdParams p = synthetic_base();
+  ASSERT_EQ(p.kind, DamperKind::semiactive);
+  p.lugre.sigma1_kip_s_per_in = 0.0;
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  BrfdParams plain = p;
+  plain.effects = {};
+  const BrfdModel without(plain);
+  for (const double kappa : {40.0, -40.0}) {
+    p.effects.pretension = PretensionEffect{};
+    p.effects.pretension->clamp_saturation_per_in = kappa;
+    double departure = 0.0;  // the largest difference from Eq. (4)'s linear law among the settings
+    for (const double speed : {4.0, -4.0}) {
+      for (const auto& [u1, u2] : std::vector<std::pair<double, double>>{{-0.02, -0.01}, {0.015, -0.02}, {0.02, 0.01}}) {
+        DamperInput in;
+        in.drum_vel_in_per_s = speed;
+        in.actuator1_in = p.semiactive.actuator1_initial_in;
+        in.actuator2_in = p.semiactive.actuator2_initial_in;
+        const double b = without.kinetic_friction_kip(in);
+        double expected = b;
+        for (int k = 0; k < 2; ++k) {
+          const double u = k == 0 ? u1 : u2;
+          DamperInput one = in;
+          (k == 0 ? one.actuator1_in : one.actuator2_in) += u;
+          const double term = without.kinetic_friction_kip(one) - b;
+          const double g = std::abs(term / u), t = term / g;
+          expected += kappa > 0.0 ? g * std::tanh(kappa * t) / kappa : g * std::sinh(-kappa * t) / -kappa;
+        }
+        in.actuator1_in += u1;
+        in.actuator2_in += u2;
+        const double linear = without.kinetic_friction_kip(in);
+        if (expected <= p.semiactive.fc_floor_kip || linear <= p.semiactive.fc_floor_kip) continue;
+        departure = std::max(departure, std::abs(expected - linear));
+        BrfdModel m(p);
+        double f = 0.0;
+        for (int i = 0; i < 20000; ++i) {
+          in.drum_disp_in += speed * 1e-4;
+          f = m.step(in, 1e-4);
+        }
+        EXPECT_NEAR(std::abs(f), expected, 1e-6 * expected) << "kappa " << kappa << " v " << speed << " u " << u1 << ", " << u2;
+      }
+    }
+    EXPECT_GT(departure, 0.05) << "the settings test the law where it departs from Eq. (4), kappa " << kappa;
+  }
+}
+
 // Pretension's band stretch law in steady sliding at a held setting (v >> v_s, σ1 = σ2 = 0): each
 // actuator's Eq. (4) term T_k (the model without the effect, that actuator alone moved) becomes
 // |g_k| (e^(β t_k) − 1)/β with |g_k| = |T_k/u_k| and t_k = T_k/|g_k| its tightening travel (Fung's
