@@ -367,43 +367,48 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0, 0.0}));
   // The forward band's run-in on Eq. (4)'s Fc only (Fs kept): its level rises 0.5 % per kip in of its own work, saturating.
   c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0, 0.0}));
-  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
+  c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
   // quadratic viscous force and a lagged Stribeck term.
-  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "transient", {2.0, 0.0, -0.3, 1.0, 0.2, 0.3, 0.08, 0.15, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // A shear-thinning film in place of part of the viscous force: -0.3 v + 0.4 sgn(v) |v|^0.5.
-  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "film", {2.0, -0.3, 0.0, 1.0, 0.0, 0.0, 0.4, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Frictional memory of the whole friction-velocity curve: the Stribeck term and the viscous force
   // see the velocity 0.1 s late.
-  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "memory", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.1, 2.0, 1.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Flash heating: the levels fall by 30 % of (1 - 0.8/|v|) above 0.8 in/s (Rice 2006).
-  c.push_back(library_case("velocity", "flash", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.8, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "flash", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.8, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Flash temperature by the load (Archard 1959): Fc × (1 − 0.08 Fc |v|), low Péclet number.
-  c.push_back(library_case("velocity", "flash_load", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.08, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "flash_load", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.08, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // The regularized steady-state rate law on Eq. (4)'s Fc only: Fc (1 + 0.15 ln(1 + |v|/0.3 in/s)), Fs kept.
-  c.push_back(library_case("velocity", "rate_kinetic", {2.0, 0.0, 0.0, 0.3, 0.0, 0.15, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("velocity", "rate_kinetic", {2.0, 0.0, 0.0, 0.3, 0.0, 0.15, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // A friction peak over log speed (viscoelastic lining, Grosch 1963): Fc × (1 + 0.25 e^(−ln²(|v|/2)/(2 · 0.7²))), Fs kept.
-  c.push_back(library_case("velocity", "peak", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.25, 2.0, 0.7}));
-  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0}));
-  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0}));
-  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0}));  // a saturating contact, Fc = b N^0.6
+  c.push_back(library_case("velocity", "peak", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.25, 2.0, 0.7, 0.0, 0.5}));
+  // A power law of the speed on both levels (third body): g x (1 + 0.15 |v|^0.4), 15 % at 1 in/s.
+  c.push_back(library_case("velocity", "power", {2.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.15, 0.4}));
+  c.push_back(library_case("pretension", "weak", {0.5, 0.5, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "strong", {1.0, 0.8, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "clamping", {0.0, 0.0, 0.0, 0.6, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0}));  // a saturating contact, Fc = b N^0.6
   // Thermal fade: the friction work stored as heat, conducted away with a 5 s time constant.
-  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "fade", {0.0, 0.0, 0.004, 1.0, 3000.0, 0.2, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // The band's own pre-tension loosens with the wear (40 % over about 50 kip·in of friction work);
   // the actuators keep their increment.
-  c.push_back(library_case("pretension", "loosening", {0.0, 0.0, 0.008, 1.0, 50.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "loosening", {0.0, 0.0, 0.008, 1.0, 50.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // Eq. (4) bent with its slope at the pre-tension kept (Box-Cox, q = 2, k = 1/2: the capstan's
   // exponential to second order).
-  c.push_back(library_case("pretension", "curved", {0.0, 0.0, 0.0, 2.0, 3000.0, 0.0, 1.0, 0.5, 0.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "curved", {0.0, 0.0, 0.0, 2.0, 3000.0, 0.0, 1.0, 0.5, 0.0, 1.0, 0.0, 0.0, 0.0}));
   // The two actuators' clamping not additive: ΔFc += c u1 u2 (with the drives' two-actuator pulses,
   // 0.015-0.02 in, about 1.5-2.4 kip at their peak).
   // A kink at the pre-tension: releasing below it the clamping is 0.6 as steep as tightening.
-  c.push_back(library_case("pretension", "kinked", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.0, 0.0}));
-  c.push_back(library_case("pretension", "coupling", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 6000.0, 1.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "kinked", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("pretension", "coupling", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 6000.0, 1.0, 0.0, 0.0, 0.0}));
   // Each actuator's band stretched along an exponential (Fung) law, 25 /in of tightening travel:
   // at 0.03 in of travel its term is 1.4 times Eq. (4)'s, released by 0.03 in 0.7 times.
-  c.push_back(library_case("pretension", "band_stretch", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 25.0, 0.0}));
+  c.push_back(library_case("pretension", "band_stretch", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 25.0, 0.0, 0.0}));
+  // Each actuator's band saturating alike both ways, tanh(30 t)/30: at 0.03 in of travel either
+  // way its term is 0.79 times Eq. (4)'s (twenty-fifth session).
+  c.push_back(library_case("pretension", "band_saturation", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 30.0}));
   c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
   c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
   c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));  // band-force feedback only
