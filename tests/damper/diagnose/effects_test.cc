@@ -2128,20 +2128,13 @@ TEST(Effects, ActuatorCouplingAddsTheProductOfTheTwoTravels) {
 // directions alike. Fails with the law ignored, with |v| signed (backward), or with the exponent
 // dropped (B |v|).
 TEST(Effects, SpeedPowerLawScalesBothLevelsAlikeBothWays) {
-  BrfdParams p = synthetic_base();
-  p.kind = DamperKind::passive_lugre;
-  p.lugre.sigma0_kip_per_in = 3000.0;
-  p.lugre.sigma1_kip_s_per_in = 0.0;
+  BrfdParams p = stiff_passive_base();
   const double b = 0.3, m = 0.35;
   p.effects.velocity = VelocityEffect{};
   p.effects.velocity->speed_power_share = b;
   p.effects.velocity->speed_power_exponent = m;
   for (double v : {0.2, 0.8, 2.0, 4.0, -0.5, -3.0}) {
-    BrfdModel mdl(p);
-    DamperInput in;
-    in.drum_vel_in_per_s = v;
-    double f = 0.0;
-    for (int i = 0; i < 20000; ++i) f = mdl.step(in, 1e-4);
+    const double f = steady_sliding_force_kip(p, v);
     const double speed = std::abs(v);
     const double phi = 1.0 + b * std::pow(speed, m);
     const double fc = v > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = v > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
@@ -2150,6 +2143,36 @@ TEST(Effects, SpeedPowerLawScalesBothLevelsAlikeBothWays) {
     ASSERT_GT(g - plain, 0.05) << "the law departs from Eq. (2) here";
     EXPECT_NEAR(std::abs(f - p.lugre.sigma2_kip_s_per_in * v), g, 1e-6 * g) << v;
   }
+}
+
+// Eq. (4)'s level at a held setting x'_k + u_k with each actuator's term T_k (the model without
+// effects, that actuator alone moved) passed through a per-band law: b + Σ |g_k| law(t_k), with
+// |g_k| = |T_k/u_k| and t_k = T_k/|g_k| the tightening travel, in.
+double per_band_law_kip(const BrfdModel& without, const DamperInput& at_start, double u1, double u2,
+                        const std::function<double(double)>& law) {
+  const double b = without.kinetic_friction_kip(at_start);
+  double level = b;
+  for (int k = 0; k < 2; ++k) {
+    const double u = k == 0 ? u1 : u2;
+    if (u == 0.0) continue;
+    DamperInput one = at_start;
+    (k == 0 ? one.actuator1_in : one.actuator2_in) += u;
+    const double term = without.kinetic_friction_kip(one) - b;
+    const double g = std::abs(term / u);
+    level += g * law(term / g);
+  }
+  return level;
+}
+
+// The band force after 2 s of steady sliding at the drum speed and actuator setting of `in`.
+double held_setting_force_kip(const BrfdParams& p, DamperInput in) {
+  BrfdModel m(p);
+  double f = 0.0;
+  for (int i = 0; i < 20000; ++i) {
+    in.drum_disp_in += in.drum_vel_in_per_s * 1e-4;
+    f = m.step(in, 1e-4);
+  }
+  return f;
 }
 
 // Pretension's symmetric band stretch law (clamp_saturation_per_in = κ) in steady sliding at a
@@ -2175,28 +2198,16 @@ TEST(Effects, EachBandsSymmetricStretchLawSaturatesAlikeBothWays) {
         in.drum_vel_in_per_s = speed;
         in.actuator1_in = p.semiactive.actuator1_initial_in;
         in.actuator2_in = p.semiactive.actuator2_initial_in;
-        const double b = without.kinetic_friction_kip(in);
-        double expected = b;
-        for (int k = 0; k < 2; ++k) {
-          const double u = k == 0 ? u1 : u2;
-          DamperInput one = in;
-          (k == 0 ? one.actuator1_in : one.actuator2_in) += u;
-          const double term = without.kinetic_friction_kip(one) - b;
-          const double g = std::abs(term / u), t = term / g;
-          expected += kappa > 0.0 ? g * std::tanh(kappa * t) / kappa : g * std::sinh(-kappa * t) / -kappa;
-        }
+        const double expected = per_band_law_kip(without, in, u1, u2, [kappa](double t) {
+          return kappa > 0.0 ? std::tanh(kappa * t) / kappa : std::sinh(-kappa * t) / -kappa;
+        });
         in.actuator1_in += u1;
         in.actuator2_in += u2;
         const double linear = without.kinetic_friction_kip(in);
         if (expected <= p.semiactive.fc_floor_kip || linear <= p.semiactive.fc_floor_kip) continue;
         departure = std::max(departure, std::abs(expected - linear));
-        BrfdModel m(p);
-        double f = 0.0;
-        for (int i = 0; i < 20000; ++i) {
-          in.drum_disp_in += speed * 1e-4;
-          f = m.step(in, 1e-4);
-        }
-        EXPECT_NEAR(std::abs(f), expected, 1e-6 * expected) << "kappa " << kappa << " v " << speed << " u " << u1 << ", " << u2;
+        EXPECT_NEAR(std::abs(held_setting_force_kip(p, in)), expected, 1e-6 * expected)
+            << "kappa " << kappa << " v " << speed << " u " << u1 << ", " << u2;
       }
     }
     EXPECT_GT(departure, 0.05) << "the settings test the law where it departs from Eq. (4), kappa " << kappa;
@@ -2227,28 +2238,12 @@ TEST(Effects, EachBandsStretchLawIsExponentialInItsOwnTightening) {
       in.drum_vel_in_per_s = speed;
       in.actuator1_in = p.semiactive.actuator1_initial_in;
       in.actuator2_in = p.semiactive.actuator2_initial_in;
-      const double b = without.kinetic_friction_kip(in);
-      double expected = b;
-      for (int k = 0; k < 2; ++k) {
-        const double u = k == 0 ? u1 : u2;
-        if (u == 0.0) continue;
-        DamperInput one = in;
-        (k == 0 ? one.actuator1_in : one.actuator2_in) += u;
-        const double term = without.kinetic_friction_kip(one) - b;
-        const double g = std::abs(term / u);
-        expected += g * std::expm1(beta * term / g) / beta;
-      }
+      const double expected = per_band_law_kip(without, in, u1, u2, [beta](double t) { return std::expm1(beta * t) / beta; });
       in.actuator1_in += u1;
       in.actuator2_in += u2;
       const double linear = without.kinetic_friction_kip(in);
       ASSERT_GT(std::abs(expected - linear), 0.1) << "the law departs from Eq. (4) here";
-      BrfdModel m(p);
-      double f = 0.0;
-      for (int i = 0; i < 20000; ++i) {
-        in.drum_disp_in += speed * 1e-4;
-        f = m.step(in, 1e-4);
-      }
-      EXPECT_NEAR(std::abs(f), expected, 1e-6 * expected) << "v " << speed << " u " << u1 << ", " << u2;
+      EXPECT_NEAR(std::abs(held_setting_force_kip(p, in)), expected, 1e-6 * expected) << "v " << speed << " u " << u1 << ", " << u2;
     }
   }
   // The same law on the tension ratio (clamp_stiffening_per_tension = γ): the summed increment
