@@ -354,19 +354,21 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // The clamping rings after each actuator motion: a second-order response of period 1.1 s, ζ 0.3
   // (its envelope decays over 0.6 s, after the actuators stopped).
   c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0}));
-  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
-  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
-  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));  // Stribeck speed and σ2 by direction
-  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));  // band stiffness by direction of motion
+  c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));  // Stribeck speed and σ2 by direction
+  c.push_back(library_case("asymmetry", "motion", {0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));  // band stiffness by direction of motion
   // One band differs: the backward band's Stribeck speed × 1.6, the forward band as modelled.
-  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0}));
+  c.push_back(library_case("asymmetry", "one_sided", {0.0, 0.0, -0.3, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
   // One band's own lining: the forward band's friction rising as 0.1 |v|^0.5 (the backward band as
   // modelled); the backward band fading with its own friction work (30 % over ~40 kip·in), cooling
   // with a 5 s time constant.
-  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0, 1.0, 0.0}));
-  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0, 0.0}));
+  c.push_back(library_case("asymmetry", "band_speed", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.05, 0.5, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
+  c.push_back(library_case("asymmetry", "band_fade", {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.004, 3000.0, 0.2, 1.0, 0.0, 0.0, 0.0, 1.0}));
   // The forward band's run-in on Eq. (4)'s Fc only (Fs kept): its level rises 0.5 % per kip in of its own work, saturating.
-  c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0, 0.0}));
+  c.push_back(library_case("asymmetry", "run_in_kinetic", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -0.005, 40.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0}));
+  // The forward band's lining periodic in the drum position: its level × (1 + 0.4 cos(2π x/0.8 in)) (twenty-sixth session).
+  c.push_back(library_case("asymmetry", "lining_wave", {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.2, 0.0, 0.8}));
   c.push_back(library_case("velocity", "weak", {1.2, 0.1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   c.push_back(library_case("velocity", "strong", {1.0, 0.2, -0.08, 1.0, 0.05, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5}));
   // Velocity-neutral rate-and-state (a = -s: only the transient after a change of slip rate), a
@@ -402,6 +404,8 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // 0.015-0.02 in, about 1.5-2.4 kip at their peak).
   // A kink at the pre-tension: releasing below it the clamping is 0.6 as steep as tightening.
   c.push_back(library_case("pretension", "kinked", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.0}));
+  // A band that takes tension only above its set point: releasing, 0.05 as steep as tightening (twenty-sixth session).
+  c.push_back(library_case("pretension", "tension_only", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.5, 0.0, 0.05, 0.0, 0.0, 0.0}));
   c.push_back(library_case("pretension", "coupling", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 6000.0, 1.0, 0.0, 0.0, 0.0}));
   // Each actuator's band stretched along an exponential (Fung) law, 25 /in of tightening travel:
   // at 0.03 in of travel its term is 1.4 times Eq. (4)'s, released by 0.03 in 0.7 times.
@@ -409,24 +413,26 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // Each actuator's band saturating alike both ways, tanh(30 t)/30: at 0.03 in of travel either
   // way its term is 0.79 times Eq. (4)'s (twenty-fifth session).
   c.push_back(library_case("pretension", "band_saturation", {0.0, 0.0, 0.0, 1.0, 3000.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 30.0}));
-  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
-  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
-  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));  // band-force feedback only
-  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));   // strong wrap: ~ capstan e^(±κd)
+  c.push_back(library_case("self_energizing", "weak", {-0.1, 0.08, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));
+  c.push_back(library_case("self_energizing", "strong", {-0.15, 0.1, 0.15, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));
+  c.push_back(library_case("self_energizing", "servo", {0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));  // band-force feedback only
+  c.push_back(library_case("self_energizing", "wrap", {0.7, -0.6, 0.3, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));   // strong wrap: ~ capstan e^(±κd)
   // Self-servo per kip of band force, the same gain both ways: g (1 + 0.06 |F|).
-  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
-  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));  // band-stretch spring in parallel
+  c.push_back(library_case("self_energizing", "servo_per_kip", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));
+  c.push_back(library_case("self_energizing", "spring", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));  // band-stretch spring in parallel
   // Each band's own spring: the one stretched backward at 0.3 of the forward one's rate. (The bench
   // records start at the drum's zero, as the measured tests do, so drum_start_share is not judged here.)
-  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "band_springs", {0.0, 0.0, 0.0, 1.0, 0.0, 0.6, 0.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));
   // A leading/trailing self-servo: +0.06 per kip of band force moving forward, −0.06 backward.
-  c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "servo_by_direction", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0}));
   // The leading/trailing brake factor by the level on Eq. (4)'s Fc only: Fc/(1 ∓ 0.05 Fc), Fs kept.
-  c.push_back(library_case("self_energizing", "brake_factor", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.05, 0.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "brake_factor", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.05, 0.0, 0.0, 0.0, 0.3, 0.0}));
   // A capstan wrap by the drum position on Eq. (4)'s Fc only, from the start (Fs kept: stiction_share 0).
-  c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.3}));
+  c.push_back(library_case("self_energizing", "wrap_kinetic", {0.5, -0.5, 0.12, 2.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0}));
   // The wrap built up over each stroke since the reversal, backward only, on Fc only: Fc (1 + 0.5 (1 − e^(−s/0.4 in))).
-  c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4}));
+  c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4, 0.0}));
+  // The self-servo per kip through a 0.15 s lag, tightening only: g (1 + 0.06 max(0, sgn(v) y)) (twenty-sixth session).
+  c.push_back(library_case("self_energizing", "lagged_servo", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.15}));
   c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
   c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));  // a rounder transition than LuGre

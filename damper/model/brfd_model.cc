@@ -120,6 +120,7 @@ void BrfdModel::reset() {
   overshoot_kip_ = 0.0;
   pulse_fast_ = pulse_slow_ = 1.0;  // as set_bristle_in(0): the memories at +1, no pulse
   pulse_kip_ = 0.0;
+  servo_band_kip_ = 0.0;
   bank_kip_.fill(0.0);
   const TransitionShapeEffect* bank = params_.effects.transition_shape ? &*params_.effects.transition_shape : nullptr;
   for (int k = 0; k < TransitionShapeEffect::kBankElements; ++k)
@@ -165,6 +166,7 @@ void BrfdModel::set_bristle_in(double z_in) {
   pulse_kip_ = 0.0;
   // The Iwan bank: the held force shared by the elements' slip shares.
   for (int k = 0; k < TransitionShapeEffect::kBankElements; ++k) bank_kip_[k] = bank_limit_[k] * spring_force_kip(z_in);
+  servo_band_kip_ = spring_force_kip(z_in);  // the lagged servo as at a steady hold
 }
 
 double BrfdModel::bank_sum_kip() const {
@@ -321,7 +323,7 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
   // asymmetry's and velocity's level factors: on Fc, and on Fs by their stiction shares (effects.h)
   double kinetic = 1.0, stiction = 1.0;
   if (e.asymmetry) {  // each band its level difference: constant, its own speed law, its own fade (effects.h)
-    const double asym = e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_), forward);
+    const double asym = e.asymmetry->factor(e.asymmetry->level_at(speed, forward ? band_work_fwd_kip_in_ : band_work_bwd_kip_in_, in.drum_disp_in), forward);
     kinetic *= asym;
     stiction *= 1.0 - e.asymmetry->stiction_share * (1.0 - asym);
   }
@@ -413,9 +415,14 @@ double BrfdModel::initial_bristle_for_force(double f) const {
 double BrfdModel::servo_level_kip(double band_kip, const Frame& f) const {
   if (!f.servo_on) return f.g;
   // self_energizing's self-servo: g + (φ_s − 1) × the part of g it scales (Fc and Fs, or Fc only).
-  const double servo = std::clamp(1.0 - f.servo_share + f.servo * std::abs(band_kip), 0.2, 3.0);
+  const double servo = std::clamp(1.0 - f.servo_share + f.servo * servo_feedback_kip(band_kip, f), 0.2, 3.0);
   if (f.servo_level == f.g) return f.g * servo;  // on both levels (w = 1)
   return std::max(f.g + (servo - 1.0) * f.servo_level, 1e-6);
+}
+
+double BrfdModel::servo_feedback_kip(double band_kip, const Frame& f) const {
+  // |N S(z)| at once, or the lagged force while it pulls the band of the direction of sliding (effects.h)
+  return f.servo_lagged ? f.servo_lagged_kip : std::abs(band_kip);
 }
 
 BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
@@ -471,6 +478,10 @@ BrfdModel::Frame BrfdModel::frame(const DamperInput& in) const {
       f.servo *= e.self_energizing->servo_backward_ratio;
     }
     f.servo_on = true;
+    if (e.self_energizing->band_force_lag_s > 0.0) {  // the servo through its lag, tightening only
+      f.servo_lagged = true;
+      f.servo_lagged_kip = std::max(0.0, (forward ? 1.0 : -1.0) * servo_band_kip_);
+    }
     // The part of g that φ_s scales: all of it (stiction_share w = 1), or Eq. (4)'s kinetic level
     // Fc (1 − e^(−(v/vs)²)) only, Fs kept (w = 0; effects.h).
     const double w = e.self_energizing->stiction_share;
@@ -613,6 +624,9 @@ double BrfdModel::step_with_effects(const DamperInput& in, double dt_s) {
                std::sin(2.0 * M_PI * rs->ring_frequency_hz * ring_time_s_);
     }
   }
+  // self_energizing's lagged servo: τ_s dy/dt = F − y with the step's end force held (exact).
+  const SelfEnergizingEffect* se = params_.effects.self_energizing ? &*params_.effects.self_energizing : nullptr;
+  if (se && se->band_force_lag_s > 0.0) servo_band_kip_ = force + (servo_band_kip_ - force) * std::exp(-dt_s / se->band_force_lag_s);
   // Friction work of the step (pretension's wear), with the force at its end; with a recovery rate
   // k_r (thermal fade) the exact solution of dW/dt = |F v| − k_r W over the step.
   if (params_.effects.pretension && params_.effects.pretension->wear_per_kip_in != 0.0) {
@@ -877,7 +891,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     const double band0 = f.tension * spring_force_kip(z_in_);
     const double y0 = std::abs(band0 / f.g);
     const double release = e.backlash ? e.backlash->release_ratio : 1.0;
-    const double servo0 = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * std::abs(band0), 0.2, 3.0) : 1.0;
+    const double servo0 = f.servo_on ? std::clamp(1.0 - f.servo_share + f.servo * servo_feedback_kip(band0, f), 0.2, 3.0) : 1.0;
     // The shaped law's slope: its largest value between the step's start and the steady state
     // (slope_to_steady_), or, off that grid, the bound over every |y| below max(1, |y0|).
     double slope = shaped ? shape_slope_to_steady((v >= 0.0 ? 1.0 : -1.0) * band0 / servo_level_kip(band0, f)) : 1.0;

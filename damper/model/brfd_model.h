@@ -156,6 +156,8 @@ class BrfdModel final : public DamperModel {
     double servo = 0.0;    // η / b + χ of self_energizing's band-force feedback, 1/kip
     double servo_share = 0.0;  // η
     bool servo_on = false;     // the self-servo factor φ_s applies
+    bool servo_lagged = false;      // φ_s sees the lagged force (band_force_lag_s > 0)
+    double servo_lagged_kip = 0.0;  // max(0, sgn(v) y), kip
     double servo_level = 0.0;  // the part of g that φ_s scales (all of g, or Eq. (4)'s Fc part), kip
     double relax = 0.0;    // w / τ_r of residual_static, 1/s
     double motion = 1.0;   // asymmetry's 1 ± a_m: the bristle rate's stiffness by the direction of motion
@@ -167,6 +169,8 @@ class BrfdModel final : public DamperModel {
   Frame frame(const DamperInput& in) const;
   /// The level the bristle law sees with the self-servo at this band force: g + (φ_s − 1) × servo_level.
   double servo_level_kip(double band_kip, const Frame& f) const;
+  /// The carried force φ_s sees: |band_kip| at once, or the lagged force (effects.h).
+  double servo_feedback_kip(double band_kip, const Frame& f) const;
   double rate_in_frame(double z, double v, const Frame& f) const;
   double force_in_frame(double z, double v, const Frame& f) const;
   double stiffness(bool positive_z) const;
@@ -206,6 +210,7 @@ class BrfdModel final : public DamperModel {
   double stribeck_speed_ = 0.0;           ///< ṽ_L: the lagged speed of the velocity effect, in/s
   double lagged_velocity_ = 0.0;          ///< v_L: the drum velocity through the same lag (signed), in/s
   double friction_work_kip_in_ = 0.0;     ///< W of the pretension effect's wear: ∫|F v| dt, kip·in
+  double servo_band_kip_ = 0.0;           ///< y of self_energizing's lagged servo: the force seen through τ_s, kip
   double band_work_fwd_kip_in_ = 0.0;     ///< W_fwd of asymmetry's band fade: ∫|F v| dt moving forward, kip·in
   double band_work_bwd_kip_in_ = 0.0;     ///< W_bwd: the same moving backward
   static constexpr double kEngagedTravelIn = 1e3;  ///< s at the start: long past any reversal

@@ -92,7 +92,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     const common::YamlSection a = s.section("asymmetry");
     a.allow_only({"level", "stiffness", "stribeck_speed", "viscous", "motion_stiffness", "forward_share",
                   "band_speed_slope", "band_speed_exponent", "band_fade_per_kip_in", "band_fade_saturation_kip_in",
-                  "band_fade_recovery_per_s", "stiction_share", "stribeck_shape"});
+                  "band_fade_recovery_per_s", "stiction_share", "stribeck_shape", "lining_wave_cos", "lining_wave_sin",
+                  "lining_wavelength_in"});
     AsymmetryEffect x;
     x.level = a.get_double_in("level", 0.0, -0.95, 0.95);
     x.stiffness = a.get_double_in("stiffness", 0.0, -0.95, 0.95);
@@ -107,6 +108,9 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.band_fade_recovery_per_s = a.get_double_in("band_fade_recovery_per_s", 0.0, 0.0, 100.0);
     x.stiction_share = a.get_double_in("stiction_share", 1.0, 0.0, 1.0);
     x.stribeck_shape = a.get_double_in("stribeck_shape", 0.0, -0.95, 5.0);
+    x.lining_wave_cos = a.get_double_in("lining_wave_cos", 0.0, -0.95, 0.95);
+    x.lining_wave_sin = a.get_double_in("lining_wave_sin", 0.0, -0.95, 0.95);
+    x.lining_wavelength_in = a.get_double_in("lining_wavelength_in", 1.0, 1e-3, 1e4);
     e.asymmetry = x;
   }
   if (s.has("velocity")) {
@@ -157,7 +161,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.wear_recovery_per_s = p.get_double_in("wear_recovery_per_s", 0.0, 0.0, 1e3);
     x.wear_actuator_share = p.get_double_in("wear_actuator_share", 1.0, 0.0, 1.0);
     x.clamp_gain = p.get_double_in("clamp_gain", 1.0, 0.05, 20.0);
-    x.release_gain = p.get_double_in("release_gain", 1.0, 0.05, 20.0);
+    x.release_gain = p.get_double_in("release_gain", 1.0, 0.0, 20.0);
     x.actuator_coupling_kip_per_in2 = p.get_double_in("actuator_coupling_kip_per_in2", 0.0, -1e6, 1e6);
     x.clamp_stiffening_per_in = p.get_double_in("clamp_stiffening_per_in", 0.0, -200.0, 200.0);
     x.clamp_stiffening_per_tension = p.get_double_in("clamp_stiffening_per_tension", 0.0, -20.0, 20.0);
@@ -169,7 +173,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     p.allow_only({"drum_fwd_per_in", "drum_bwd_per_in", "drum_abs_per_in", "abs_exponent", "band_force_share",
                   "band_force_per_kip", "band_spring_kip_per_in", "drum_start_share", "band_spring_neg_ratio",
                   "servo_backward_ratio", "brake_factor_per_kip", "stiction_share",
-                  "brake_factor_stiction_share", "stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in"});
+                  "brake_factor_stiction_share", "stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in",
+                  "band_force_lag_s"});
     SelfEnergizingEffect x;
     x.drum_fwd_per_in = p.get_double_in("drum_fwd_per_in", 0.0, -5.0, 5.0);
     x.drum_bwd_per_in = p.get_double_in("drum_bwd_per_in", 0.0, -5.0, 5.0);
@@ -190,6 +195,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.stroke_wrap_fwd = p.get_double_in("stroke_wrap_fwd", 0.0, -0.95, 10.0);
     x.stroke_wrap_bwd = p.get_double_in("stroke_wrap_bwd", 0.0, -0.95, 10.0);
     x.stroke_wrap_length_in = p.get_double_in("stroke_wrap_length_in", 0.3, 1e-3, 1e3);
+    x.band_force_lag_s = p.get_double_in("band_force_lag_s", 0.0, 0.0, 100.0);
     e.self_energizing = x;
   }
   if (s.has("transition_shape")) {
@@ -407,7 +413,9 @@ std::vector<EffectSpec> build_library() {
       "Fc, Fs x (1 +- a_F), a_F = level + s_v |v|^m - f W0 (1 - exp(-W_dir/W0)), dW_dir/dt = |F v| [moving in dir] - k_f W_dir; "
       "vs x (1 +- stribeck_speed), n x (1 +- stribeck_shape), sigma2 x (1 +- viscous) forward/backward; "
       "sigma0 x (1 +- stiffness) for z >= 0 / z < 0; dz/dt x (1 +- motion_stiffness) forward/backward; "
-      "each +-a split as +2ah forward / -2a(1-h) backward, h = forward_share (0.5: even)",
+      "each +-a split as +2ah forward / -2a(1-h) backward, h = forward_share (0.5: even); "
+      "one band's lining periodic in the drum position x: a_F += c cos(2 pi x/lambda_l) + s sin(2 pi x/lambda_l) "
+      "(c = lining_wave_cos, s = lining_wave_sin, lambda_l = lining_wavelength_in)",
       {{"level", -0.5, 0.5, 0.0, 0.1, false},
        {"stiffness", -0.8, 0.8, 0.0, 0.3, false},
        {"stribeck_speed", -0.7, 0.7, 0.0, 0.2, false},
@@ -420,7 +428,10 @@ std::vector<EffectSpec> build_library() {
        {"band_fade_saturation_kip_in", 3.0, 3000.0, 3000.0, 50.0, true},
        {"band_fade_recovery_per_s", 0.0, 2.0, 0.0, 0.2, false},
        {"stiction_share", 0.0, 1.0, 1.0, 0.5, false, true},
-       {"stribeck_shape", -0.45, 1.5, 0.0, 0.2, false}},
+       {"stribeck_shape", -0.45, 1.5, 0.0, 0.2, false},
+       {"lining_wave_cos", -0.45, 0.45, 0.0, 0.1, false},
+       {"lining_wave_sin", -0.45, 0.45, 0.0, 0.1, false},
+       {"lining_wavelength_in", 0.1, 10.0, 1.0, 1.0, true}},
       &ModelEffects::asymmetry,
       std::function<AsymmetryEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         AsymmetryEffect a;
@@ -437,6 +448,9 @@ std::vector<EffectSpec> build_library() {
         a.band_fade_recovery_per_s = t[10];
         a.stiction_share = t[11];
         a.stribeck_shape = t[12];
+        a.lining_wave_cos = t[13];
+        a.lining_wave_sin = t[14];
+        a.lining_wavelength_in = t[15];
         return a;
       }),
       std::function<std::vector<double>(const AsymmetryEffect&)>([](const AsymmetryEffect& a) {
@@ -444,7 +458,7 @@ std::vector<EffectSpec> build_library() {
                                    a.viscous,         a.motion_stiffness,    a.forward_share,
                                    a.band_speed_slope, a.band_speed_exponent, a.band_fade_per_kip_in,
                                    a.band_fade_saturation_kip_in, a.band_fade_recovery_per_s, a.stiction_share,
-                                   a.stribeck_shape};
+                                   a.stribeck_shape, a.lining_wave_cos, a.lining_wave_sin, a.lining_wavelength_in};
       })));
   lib.push_back(make_spec<std::optional<VelocityEffect> ModelEffects::*, VelocityEffect>(
       "velocity", "velocity dependence: Stribeck shape and its lag, parallel linear and power-law viscous force, rate-and-state levels",
@@ -532,7 +546,7 @@ std::vector<EffectSpec> build_library() {
        {"wear_actuator_share", 0.0, 1.0, 1.0, 0.0, false, true},
        {"clamp_gain", 0.3, 3.0, 1.0, 1.5, true},
        {"actuator_coupling_kip_per_in2", -30000.0, 30000.0, 0.0, 3000.0, false},
-       {"release_gain", 0.2, 3.0, 1.0, 1.5, true},
+       {"release_gain", 0.01, 5.0, 1.0, 1.5, true},
        {"clamp_stiffening_per_in", -60.0, 60.0, 0.0, 15.0, false},
        {"clamp_stiffening_per_tension", -6.0, 6.0, 0.0, 1.5, false},
        {"clamp_saturation_per_in", -60.0, 60.0, 0.0, 15.0, false}},
@@ -566,7 +580,8 @@ std::vector<EffectSpec> build_library() {
       "F += k_b d (band_spring; rho k_b for d < 0); d = drum displacement - r x its value at the start; "
       "brake factor: g / max(1 - lambda g, 0.25) for v >= 0, rho_s lambda for v < 0; "
       "stroke wrap: x (1 + k_dir (1 - exp(-s/lambda_w))), s the drum travel since the last reversal; "
-      "each level factor on g (stiction_share w = 1) or on Fc of Eq. (4) only, Fs kept (w = 0)",
+      "each level factor on g (stiction_share w = 1) or on Fc of Eq. (4) only, Fs kept (w = 0); "
+      "the servo through a lag: |N S(z)| -> max(0, sgn(v) y), tau_s dy/dt = F - y (tau_s = band_force_lag_s > 0)",
       {{"drum_fwd_per_in", -1.2, 1.2, 0.0, -0.1, false},
        {"drum_bwd_per_in", -1.2, 1.2, 0.0, 0.1, false},
        {"drum_abs_per_in", -1.2, 1.2, 0.0, 0.1, false},
@@ -581,7 +596,8 @@ std::vector<EffectSpec> build_library() {
        {"stiction_share", 0.0, 1.0, 1.0, 1.0, false, true},
        {"stroke_wrap_fwd", -0.8, 2.0, 0.0, 0.2, false},
        {"stroke_wrap_bwd", -0.8, 2.0, 0.0, 0.2, false},
-       {"stroke_wrap_length_in", 0.05, 3.0, 0.3, 0.3, true}},
+       {"stroke_wrap_length_in", 0.05, 3.0, 0.3, 0.3, true},
+       {"band_force_lag_s", 0.0, 1.0, 0.0, 0.1, false}},
       &ModelEffects::self_energizing,
       std::function<SelfEnergizingEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         SelfEnergizingEffect p;
@@ -600,6 +616,7 @@ std::vector<EffectSpec> build_library() {
         p.stroke_wrap_fwd = t[12];
         p.stroke_wrap_bwd = t[13];
         p.stroke_wrap_length_in = t[14];
+        p.band_force_lag_s = t[15];
         return p;
       }),
       std::function<std::vector<double>(const SelfEnergizingEffect&)>([](const SelfEnergizingEffect& p) {
@@ -607,7 +624,7 @@ std::vector<EffectSpec> build_library() {
                                    p.band_force_share, p.band_spring_kip_per_in, p.band_force_per_kip,
                                    p.drum_start_share, p.band_spring_neg_ratio, p.servo_backward_ratio,
                                    p.brake_factor_per_kip, p.stiction_share,
-                                   p.stroke_wrap_fwd, p.stroke_wrap_bwd, p.stroke_wrap_length_in};
+                                   p.stroke_wrap_fwd, p.stroke_wrap_bwd, p.stroke_wrap_length_in, p.band_force_lag_s};
       })));
   lib.push_back(make_spec<std::optional<TransitionShapeEffect> ModelEffects::*, TransitionShapeEffect>(
       "transition_shape",
@@ -709,7 +726,9 @@ std::vector<EffectSpec> build_library() {
                      {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share"},
                      // the same on Eq. (4)'s Fc only, Fs kept: a level difference, a band's run-in or fade
                      {"level", "forward_share", "stiction_share=0"},
-                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share", "stiction_share=0"}});
+                     {"band_fade_per_kip_in", "band_fade_saturation_kip_in", "band_fade_recovery_per_s", "forward_share", "stiction_share=0"},
+                     // a band's lining periodic in the drum position (thickness variation, run-out)
+                     {"lining_wave_cos", "lining_wave_sin", "lining_wavelength_in", "forward_share"}});
   mech("velocity", {{"stribeck_exponent", "stribeck_lag_s"},                                    // Stribeck shape
                     {"stribeck_exponent", "stribeck_lag_s", "lag_viscous_share"},               // and the whole curve's lag
                     {"added_viscous_kip_s_per_in", "quadratic_viscous_kip_s2_per_in2"},         // viscous film
@@ -755,6 +774,9 @@ std::vector<EffectSpec> build_library() {
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
                            {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
                            {"band_force_per_kip", "servo_backward_ratio", "stiction_share=0"},  // per kip by direction, on Fc only
+                           // the servo through a lag, tightening only (the band's linkage)
+                           {"band_force_per_kip", "band_force_lag_s"},
+                           {"band_force_share", "band_force_per_kip", "band_force_lag_s"},
                            {"brake_factor_per_kip", "servo_backward_ratio"},  // leading/trailing brake factor by the level
                            {"brake_factor_per_kip", "servo_backward_ratio", "stiction_share=0"},  // on Eq. (4)'s Fc only
                            {"band_spring_kip_per_in", "band_spring_neg_ratio", "drum_start_share=1"},

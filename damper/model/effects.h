@@ -188,6 +188,16 @@
 ///    linear in W), k_f = band_fade_recovery_per_s (cooling; Limpert, Brake Design and Safety, fade
 ///    with lining temperature; f < 0 a run-in, Blau 1981). A fade of both bands with the total work
 ///    is pretension's wear (u = 1), not an asymmetry.
+///    One band's lining periodic in the drum position (lining_wave_cos = c, lining_wave_sin = s,
+///    lining_wavelength_in = λ_l; twenty-sixth session): a lining whose thickness or friction varies
+///    along the drum (thickness variation, a drum out of round — the judder source of drum and disc
+///    brakes, Kubota et al. 1998, JSAE Review 19; Jacobsson 2003, Proc. IMechE D 217) makes the
+///    level coefficient of the direction whose band rides on it
+///      a_F += c cos(2π x/λ_l) + s sin(2π x/λ_l),   x the drum displacement (in, the record's origin),
+///    split by h as above (h = 1: the forward band's lining only). The level factor of that band is
+///    1 + 2 h (c cos + s sin), periodic in the drum angle, not in time or in the travel since a
+///    reversal. An outside author's one-band lining periodic in x (blind set 36 t09, λ = 0.61 in,
+///    amplitude 0.67) was named none: the play of backlash took half of its excess.
 ///  - velocity (stribeck_exponent = n, viscous_kip_s_per_in = c_v, added_viscous_kip_s_per_in = c_a,
 ///    rate_slope = s, reference_speed_in_per_s = v_r, memory_in = D): velocity dependence of the
 ///    friction, from the three places it enters: the Stribeck shape and a rate-dependent friction
@@ -293,6 +303,10 @@
 ///    their pre-tension positions): ΔFc × k_r where ΔFc < 0 (after k and q) — the clamping law with one
 ///    slope tightening and another releasing, as a band whose pre-tension spring (or linkage stop)
 ///    engages on one side of the set point only; with k the two slopes are apart (k = 1, k_r = 1: Eq. 4).
+///    k_r → 0 is a band that takes tension only above its set point (the actuator pulls the band but
+///    cannot push it, or the band goes slack): diagnose searches k_r over [0.01, 5] (twenty-sixth
+///    session; [0.2, 3] before, which left an outside author's tension-only law, k_r = 0.038, blind
+///    set 36 t16, out of reach: the best kink passed the held-out gates but not the bootstrap).
 ///    Actuator coupling (actuator_coupling_kip_per_in2 = c, added 2026-11-27 after three outside
 ///    authors' non-additive clamping, blind sets 21-23): the two actuators act on bands sharing the
 ///    drum, ΔFc += c u1 u2 with u_k = x_k − x'_k (after any actuator_lag); the seed paper neglects
@@ -346,6 +360,15 @@
 ///    for v < 0 (ρ_s = −1: the trailing band de-energized). In steady sliding it equals χ = λ; it
 ///    differs where the band force lags the level: after a reversal, at the stiction peak, while
 ///    the actuators change the clamping (the χ servo follows |N S(z)|, this one g(v) at once).
+///    The self-servo through a lag (band_force_lag_s = τ_s, s; twenty-sixth session): the band's
+///    contact pressure follows the force it carries through the compliance and friction of its
+///    linkage (a first-order lag), and feeds back only while that force pulls the band tight in the
+///    direction of sliding:
+///      τ_s dy/dt = F − y (F the damper force),   |N_λ S(z)| in φ_s ← max(0, sgn(v) y)   (τ_s > 0),
+///    so after a reversal the newly loaded band gains grip over τ_s, not at once (τ_s = 0: the
+///    instantaneous |N_λ S(z)| above). An outside author's lagged tension feedback (blind set 36
+///    t14, τ = 0.17 s) was named none: the instantaneous servo removed 66 % of its excess and was
+///    worse on one record.
 ///    Where the level factors act (stiction_share = w, for the rotation terms, the self-servo and
 ///    the brake factor alike): on the whole level g(v), stiction peak included (w = 1, the default),
 ///    or on Eq. (4)'s kinetic level only, Fs kept as Eq. (5) keeps it under the actuators (w = 0:
@@ -611,9 +634,19 @@ struct AsymmetryEffect {
   /// a_n: the Stribeck curve's exponent n × (1 ± a_n) by direction, exp(−|v/v_s|^(n (1 ± a_n))): each
   /// band's lining its own transition from static to kinetic friction (twenty-first session)
   double stribeck_shape = 0.0;
-  /// The level coefficient of one direction at sliding speed `speed` with that band's work `work`.
-  double level_at(double speed, double work_kip_in) const {
+  /// c, s: one band's lining periodic in the drum position x, the level coefficient + c cos(2π x/λ_l)
+  /// + s sin(2π x/λ_l) (0, 0: none); λ_l = lining_wavelength_in, in (> 0)
+  double lining_wave_cos = 0.0;
+  double lining_wave_sin = 0.0;
+  double lining_wavelength_in = 1.0;
+  /// The level coefficient of one direction at sliding speed `speed` with that band's work `work`,
+  /// the drum at `drum_in` (in).
+  double level_at(double speed, double work_kip_in, double drum_in) const {
     double a = level;
+    if (lining_wave_cos != 0.0 || lining_wave_sin != 0.0) {
+      const double phase = 2.0 * M_PI * drum_in / lining_wavelength_in;
+      a += lining_wave_cos * std::cos(phase) + lining_wave_sin * std::sin(phase);
+    }
     if (band_speed_slope != 0.0)
       a += band_speed_slope * (band_speed_exponent == 1.0 ? speed : std::pow(speed, band_speed_exponent));
     if (band_fade_per_kip_in != 0.0) {
@@ -696,7 +729,7 @@ struct PretensionEffect {
   /// actuator_lag), kip/in²; 0: Eq. (4)'s sum of the two actuators' terms.
   double actuator_coupling_kip_per_in2 = 0.0;
   /// k_r: slope of the clamping law where the actuators release below the pre-tension (ΔFc < 0),
-  /// relative to the slope tightening (1: Eq. 4's one slope; a bilinear law otherwise)
+  /// relative to the slope tightening (1: Eq. 4's one slope; a bilinear law otherwise; 0: tension only)
   double release_gain = 1.0;
   /// β: each actuator's band stretch law, 1/in of its tightening travel t (Fung's exponential):
   /// its Eq. (4) term g u → |g| (e^(β t) − 1)/β, t = g u/|g| (0: Eq. 4's linear law)
@@ -737,6 +770,8 @@ struct SelfEnergizingEffect {
   double stroke_wrap_fwd = 0.0;
   double stroke_wrap_bwd = 0.0;
   double stroke_wrap_length_in = 0.3;  ///< λ_w: the travel over which the stroke's wrap builds up, in
+  /// τ_s: the self-servo's lag, s: φ_s sees max(0, sgn(v) y), τ_s dy/dt = F − y (0: |N_λ S(z)| at once)
+  double band_force_lag_s = 0.0;
 };
 
 /// Shape of the stick-to-slip transition (see file comment).

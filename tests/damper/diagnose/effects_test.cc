@@ -1468,6 +1468,86 @@ TEST(Effects, AbsoluteSelfServoGainPerKipByDirection) {
   }
 }
 
+// self_energizing's self-servo through a lag (band_force_lag_s = τ_s): φ_s = 1 + χ max(0, sgn(v) y),
+// τ_s dy/dt = F − y. With a stiff bristle (σ0 = 3000 kip/in, σ1 = σ2 = 0, g = Fc at v >> v_s) the force
+// follows F = g (1 + χ max(0, sgn(v) y)) at once, so from y = 0 at the start, sliding forward,
+//   τ_s dy/dt = g − (1 − χ g) y:  y = y∞ (1 − e^(−(1 − χ g) t/τ_s)),  y∞ = g/(1 − χ g);
+// after the reversal (y0 > 0, v < 0) the newly loaded band gets no servo while y > 0: F = −g_b,
+// y = −g_b + (y0 + g_b) e^(−t/τ_s) until y = 0 at t* = τ_s ln((y0 + g_b)/g_b); then y falls to
+// −g_b/(1 − χ g_b) at the rate (1 − χ g_b)/τ_s. Fails with the lag ignored (F at its end value at
+// once) or with |y| in place of max(0, sgn(v) y) (the servo kept through the reversal).
+TEST(Effects, LaggedSelfServoTightensOnlyAfterTheBandForceHasFollowed) {
+  BrfdParams p = coulomb_band();
+  p.lugre.sigma0_kip_per_in = 3000.0;
+  const double chi = 0.08, tau = 0.2, dt = 1e-4, v = 4.0;
+  p.effects.self_energizing = SelfEnergizingEffect{};
+  p.effects.self_energizing->band_force_per_kip = chi;
+  p.effects.self_energizing->band_force_lag_s = tau;
+  const double gf = p.lugre.fc_fwd_kip, gb = p.lugre.fc_bwd_kip;
+  ASSERT_GT(1.0 - chi * gf, 0.5);
+  BrfdModel m(p);
+  DamperInput in;
+  in.drum_vel_in_per_s = v;
+  double t = 0.0, f = 0.0;
+  const double rate_f = (1.0 - chi * gf) / tau, end_f = gf / (1.0 - chi * gf);
+  for (const double check : {0.1, 0.2, 0.6, 2.0}) {  // forward, from y = 0
+    for (; t < check - 0.5 * dt; t += dt) f = m.step(in, dt);
+    const double y = end_f * -std::expm1(-rate_f * t);
+    EXPECT_NEAR(f, gf * (1.0 + chi * y), 2e-3 * gf) << "forward, t " << t;
+  }
+  const double y0 = end_f * -std::expm1(-rate_f * t);
+  const double t_cross = tau * std::log((y0 + gb) / gb);
+  const double rate_b = (1.0 - chi * gb) / tau, end_b = -gb / (1.0 - chi * gb);
+  in.drum_vel_in_per_s = -v;
+  double since = 0.0;
+  for (const double check : {0.02, 0.5 * t_cross, t_cross + 0.05, t_cross + 0.2, t_cross + 1.5}) {
+    for (; since < check - 0.5 * dt; since += dt) f = m.step(in, dt);
+    const double y = since < t_cross ? -gb + (y0 + gb) * std::exp(-since / tau) : end_b * -std::expm1(-rate_b * (since - t_cross));
+    EXPECT_NEAR(f, -gb * (1.0 + chi * std::max(0.0, -y)), 3e-3 * gb) << "backward, t since the reversal " << since;
+  }
+  EXPECT_NEAR(f, -gb / (1.0 - chi * gb), 3e-3 * gb) << "steady backward: the instantaneous servo's level";
+}
+
+// asymmetry's lining periodic in the drum position (lining_wave_cos = c, lining_wave_sin = s,
+// lining_wavelength_in = λ_l): the level of the band of the direction × (1 + 2h (c cos(2πx/λ_l) +
+// s sin(2πx/λ_l))) forward, × (1 − 2(1 − h)(...)) backward, x the drum displacement. With a stiff
+// bristle (σ0 = 3000 kip/in, σ1 = σ2 = 0) sliding at v >> v_s the force follows the level within
+// its slip length g/σ0 ~ 1e-3 in: F = ±g (factor) to 1 % of g over a 0.8 in period, the band of
+// the other direction the base. Fails with the drum position not passed, a wrong phase or h ignored.
+TEST(Effects, OneBandsLiningWaveFollowsTheDrumPosition) {
+  BrfdParams p = stiff_passive_base();
+  p.lugre.sigma2_kip_s_per_in = 0.0;
+  const double c = 0.15, sn = -0.1, lambda = 0.8, dt = 1e-4, v = 4.0;
+  for (const double h : {1.0, 0.0}) {
+    AsymmetryEffect a;
+    a.forward_share = h;
+    a.lining_wave_cos = c;
+    a.lining_wave_sin = sn;
+    a.lining_wavelength_in = lambda;
+    p.effects.asymmetry = a;
+    for (const double dir : {1.0, -1.0}) {
+      BrfdModel m(p);
+      DamperInput in;
+      in.drum_vel_in_per_s = dir * v;
+      double f = 0.0, largest = 0.0;
+      for (int i = 1; i <= 5000; ++i) {  // 2 in of travel from x = 0
+        in.drum_disp_in = dir * v * i * dt;
+        f = m.step(in, dt);
+        if (i < 500) continue;  // past the start
+        const double r = v / p.lugre.vs_in_per_s;
+        const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip, fs = dir > 0 ? p.lugre.fs_fwd_kip : p.lugre.fs_bwd_kip;
+        const double g = fc + (fs - fc) * std::exp(-r * r);
+        const double wave = c * std::cos(2.0 * M_PI * in.drum_disp_in / lambda) + sn * std::sin(2.0 * M_PI * in.drum_disp_in / lambda);
+        const double factor = dir > 0 ? 1.0 + 2.0 * h * wave : 1.0 - 2.0 * (1.0 - h) * wave;
+        EXPECT_NEAR(f, dir * g * factor, 1e-2 * g) << "h " << h << " dir " << dir << " x " << in.drum_disp_in;
+        largest = std::max(largest, std::abs(std::abs(f) - g));
+      }
+      const bool rides = (dir > 0) == (h == 1.0);
+      if (rides) EXPECT_GT(largest, 0.3 * std::hypot(c, sn) * p.lugre.fc_bwd_kip) << "that band's level varies";
+    }
+  }
+}
+
 // self_energizing's level factors on both levels (stiction_share w = 1, the default) or on Eq. (4)'s
 // kinetic level only (w = 0, Fs kept, as outside authors' capstan wrap with the drum position, blind
 // set 27 t16, and capstan servo by the band force, t29). Steady state at v = v_s, Fs = 1.8 Fc,
@@ -2058,7 +2138,8 @@ TEST(Effects, ClampingLawScalesKineticFrictionAsAPowerOfTheTensionRatio) {
   p.lugre.sigma1_kip_s_per_in = 0.0;
   p.lugre.sigma2_kip_s_per_in = 0.0;
   const std::vector<std::array<double, 3>> laws{{0.6, 1.0, 1.0}, {1.0, 1.0, 1.0}, {1.8, 1.0, 1.0}, {1.0, 0.7, 1.0}, {2.0, 0.5, 1.0},
-                                                {1.0, 1.0, 0.4}, {1.0, 0.8, 1.7}};
+                                                {1.0, 1.0, 0.4}, {1.0, 0.8, 1.7},
+                                                {1.0, 1.9, 0.04}, {1.0, 1.0, 0.0}};  // nearly and wholly tension-only
   for (const auto& [q, k, kr] : laws) {
     for (double dx : {0.0, -0.005, -0.01, 0.004}) {  // the actuators retract: more band tension; extend: less
       p.effects.pretension = PretensionEffect{0.0, 0.0, 0.0, q};
