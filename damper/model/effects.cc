@@ -772,6 +772,7 @@ std::vector<EffectSpec> build_library() {
                            {"stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in"},
                            {"stroke_wrap_fwd", "stroke_wrap_bwd", "stroke_wrap_length_in", "stiction_share=0"},
                            {"band_force_share", "band_force_per_kip"},  // self-servo, relative and absolute
+                           {"band_force_share", "band_force_per_kip", "stiction_share=0"},  // on Eq. (4)'s Fc only, Fs kept
                            {"band_force_share", "band_force_per_kip", "servo_backward_ratio"},  // and by direction
                            {"band_force_per_kip", "servo_backward_ratio", "stiction_share=0"},  // per kip by direction, on Fc only
                            // the servo through a lag, tightening only (the band's linkage)
