@@ -558,13 +558,13 @@ TEST(DiagnoseSelection, MechanismSubfamiliesHoldTheOtherParametersAtTheirNullVal
     }
   }
   // self_energizing: the rotation (on both levels and on Fc only) and the band spring each from the
-  // start and from the drum's zero, the stroke wrap (on g, on Fc only), the self-servo, the
-  // self-servo by direction (on g, on Fc only),
-  // the brake factor by the level (on g, on Fc only), the whole family. The band spring, a force in parallel with the friction, has its own regimes
+  // start and from the drum's zero, the stroke wrap (on g, on Fc only), the self-servo (on g, on Fc
+  // only), the self-servo by direction (on g, on Fc only), the self-servo through its lag (per kip;
+  // relative and per kip), the brake factor by the level (on g, on Fc only), the whole family. The band spring, a force in parallel with the friction, has its own regimes
   // (every state of the drum but the final rest); the self-servo and the brake factor act through
   // the loop after a reversal too; the others keep the family's.
   const std::vector<EffectSpec> se = candidate_subfamilies(effect_spec("self_energizing"), 0);
-  EXPECT_EQ(se.size(), 14u);
+  EXPECT_EQ(se.size(), 17u);
   for (std::size_t k = 0; k + 1 < se.size(); ++k) {
     const EffectSpec& sub = se[k];
     auto has = [&sub](const char* name) {
