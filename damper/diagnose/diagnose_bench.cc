@@ -333,15 +333,17 @@ std::vector<BenchCase> bench_cases(bool quick) {
   // A slack that grows with the load before each reversal: 0.006 in per kip (about 0.015-0.03 in
   // after the drives' 2.5-5 kip strokes).
   c.push_back(library_case("backlash", "load_slack", {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.006}));
-  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
-  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
+  c.push_back(library_case("residual_static", "weak", {0.4, 0.2, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0}));
+  c.push_back(library_case("residual_static", "strong", {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0}));
   // The held force relaxes by 30 % (stress relaxation); recovers 60 % of the way to a set level.
-  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
-  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0, 0.0, 0.0, 3.0, 0.5}));
+  c.push_back(library_case("residual_static", "relaxation", {0.0, 0.4, 0.3, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0}));
+  c.push_back(library_case("residual_static", "set_level", {0.0, 0.5, 0.6, 1.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0}));
   // A stretched settling (β = 0.4) of 40 % of the held force: fast at first, a long tail.
-  c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4, 0.0, 0.0, 3.0, 0.5}));
+  c.push_back(library_case("residual_static", "stretched", {0.0, 0.6, 0.4, 0.0, 0.4, 0.0, 0.0, 3.0, 0.5, 0.0}));
   // A ring-down of 0.5 kip at 4 Hz, decaying in 0.4 s, after each stop (the rig's compliance).
-  c.push_back(library_case("residual_static", "ring", {1.0, 100.0, 0.0, 0.0, 1.0, 0.0, 0.5, 4.0, 0.4}));
+  c.push_back(library_case("residual_static", "ring", {1.0, 100.0, 0.0, 0.0, 1.0, 0.0, 0.5, 4.0, 0.4, 0.0}));
+  // Andrade's transient creep at rest (relaxation_tail -1, β 1/3): no levelling off over a rest.
+  c.push_back(library_case("residual_static", "andrade", {0.0, 60.0, 1.0, 0.0, 1.0 / 3.0, 0.0, 0.0, 3.0, 0.5, -1.0}));
   c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0, 0.0, 2.0, 1.0, 1.0}));
   c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
   // A transport delay of 0.08 s; the actuators slewing at no more than 0.1 in/s.
@@ -433,32 +435,34 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("self_energizing", "stroke_wrap", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.4, 0.0}));
   // The self-servo per kip through a 0.15 s lag, tightening only: g (1 + 0.06 max(0, sgn(v) y)) (twenty-sixth session).
   c.push_back(library_case("self_energizing", "lagged_servo", {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.06, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.15}));
-  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
-  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));  // a rounder transition than LuGre
+  c.push_back(library_case("transition_shape", "weak", {2.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
+  c.push_back(library_case("transition_shape", "strong", {5.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
+  c.push_back(library_case("transition_shape", "smooth", {0.5, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));  // a rounder transition than LuGre
   // Elasto-plastic pre-sliding: elastic up to 40 % of the friction level, elastic unloading.
-  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "presliding", {1.0, 0.9, 0.4, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // Elastic up to 30 % of the friction level, slip full from 61.5 % on (Dupont's z_max below the
   // steady state; unloading as LuGre).
-  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "breakaway", {1.0, 0.0, 0.3, 1.0, 0.0, 1.0, 0.45, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // Dahl's own exponent: dF/dx = σ0 |1 − F/g sgn v|^2.5 sgn(·), a slow rounded approach to sliding.
-  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "dahl", {1.0, 0.0, 0.0, 2.5, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // Two contact elements: half the friction carried by one 5 times softer (Maxwell-slip).
-  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "two_element", {1.0, 0.0, 0.0, 1.0, 0.5, 0.2, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // LuGre's micro-damping fading with the speed (Canudas de Wit et al. 1995), σ1' = 2 kip s/in, v_d = 0.4 in/s.
-  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "micro_damping", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.4, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // Bliman-Sorine's stiction peak in the travel domain: the fast element over-reaches by θ, a slow one
   // pulls back over ℓ2 (blind set 31 t19)
-  c.push_back(library_case("transition_shape", "overshoot", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.7, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "overshoot", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.7, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // A stiction bump in the travel since each reversal: the loaded band force × (1 + 0.8 B(s)), B rising
   // over 0.052 in and falling over 0.13 in of travel, peak 1 (blind set 32 t02)
-  c.push_back(library_case("transition_shape", "stiction_bump", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.8, 0.13, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "stiction_bump", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.8, 0.13, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // Bliman-Sorine's travel pulse beside the bristle: 0.6 Fc (w1 − w2)/(2 P_max), w_j following sgn v
   // over 0.03 and 0.12 in of travel (blind set 33 t19)
-  c.push_back(library_case("transition_shape", "travel_pulse", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.6, 0.12, 0.25, 0.0, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "travel_pulse", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.6, 0.12, 0.25, 0.0, 1.0, 1.0, 0.0, 0.5, 1.0}));
   // An Iwan bank carrying 40 % of the band force: 16 elasto-plastic elements, Iwan's uniform density
   // of slip travels (blind sets 30 t25, 31 t27, 32 t21, 33 t15 wrote such banks)
-  c.push_back(library_case("transition_shape", "iwan_bank", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.4, 1.0, 1.0}));
+  c.push_back(library_case("transition_shape", "iwan_bank", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.4, 1.0, 1.0, 0.0, 0.5, 1.0}));
+  // Linear slip weakening since the reversal (Ida 1972; Palmer & Rice 1973): the levels × (1 + 0.6 (1 − s/0.5 in)).
+  c.push_back(library_case("transition_shape", "slip_weakening", {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.15, 0.4, 0.0, 0.15, 0.4, 0.0, 1.0, 1.0, 0.6, 0.5, 1.0}));
   c.push_back(own_backlash("weak", 0.04, 0.1));
   c.push_back(own_backlash("strong", 0.08, 0.1));
   c.push_back(own_delay("weak", 0.05));

@@ -352,6 +352,9 @@ BrfdModel::Levels BrfdModel::levels(const DamperInput& in, bool forward) const {
     factor *= 1.0 - e.backlash->takeup_level_share * lost;  // ℓ = 0: the levels kept, the stiffness only
     tension *= 1.0 - e.backlash->takeup_force_share * lost;
   }
+  // transition_shape's slip weakening since the reversal: both levels × (1 + ρ_w W(s)) (effects.h)
+  if (e.transition_shape && e.transition_shape->weakening_share != 0.0)
+    factor *= 1.0 + e.transition_shape->weakening_share * e.transition_shape->slip_weakening(stroke_travel_in_);
   fc *= factor * kinetic * kinetic_only * rotation;
   fs *= factor * stiction * (e.velocity ? 1.0 - e.velocity->flash_stiction_share * (1.0 - kinetic_only) : 1.0) *
         (e.self_energizing ? 1.0 - e.self_energizing->stiction_share * (1.0 - rotation) : 1.0);
@@ -734,12 +737,12 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
   const double v = in.drum_vel_in_per_s;
   const double speed = std::abs(v);
   const bool stroke_wrap = e.self_energizing && (e.self_energizing->stroke_wrap_fwd != 0.0 || e.self_energizing->stroke_wrap_bwd != 0.0);
-  const bool stroke_peak = e.transition_shape && e.transition_shape->stroke_peak_share != 0.0;
+  const bool stroke_peak = e.transition_shape && (e.transition_shape->stroke_peak_share != 0.0 || e.transition_shape->weakening_share != 0.0);
   if ((e.backlash && (e.backlash->takeup_dip > 0.0 || e.backlash->impact_rings() || e.backlash->slack_per_kip > 0.0 ||
                       (!play_opened_ && e.backlash->slack_in > 0.0))) ||
       stroke_wrap || stroke_peak) {
     // backlash's take-up and impact ring, self_energizing's stroke wrap, transition_shape's stroke
-    // peak: a reversal is the drum turned
+    // peak and slip weakening: a reversal is the drum turned
     // back by kReversalTravelIn from the furthest point of its last direction (a hysteresis on the
     // drum position ∫v dt: rest jitter and a creeping stop are none); the travel since the reversal
     // counts from that turn point (effects.h).
@@ -817,15 +820,17 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     const double q = slow_speed_ / ResidualStaticEffect::kRestSpeedInPerS;
     const double w = std::exp(-q * q);
     if (w < 0.5) held_z_in_ = z_in_;
-    // Stretched settling: at rest the step's rate is ((t_r + dt)^β − t_r^β) / (τ_r^β dt), the
-    // exact mean rate of exp(−(t_r/τ_r)^β) over the step; the rest clock t_r restarts at each stop.
+    // Stretched settling: at rest the step's rate is (L(x(t_r + dt)) − L(x(t_r))) / dt, x = (t_r/τ_r)^β,
+    // L = −ln of the share left ((1 + c x)^(−1/c); exp(−x) at c = 0): the exact mean rate over the
+    // step; the rest clock t_r restarts at each stop.
     const ResidualStaticEffect& rs = *e.residual_static;
     rest_rate_per_s_ = -1.0;
     if (w < 0.5) {
       rest_time_s_ = 0.0;
-    } else if (rs.relaxation_exponent != 1.0 && dt_s > 0.0) {
+    } else if ((rs.relaxation_exponent != 1.0 || rs.relaxation_tail != 0.0) && dt_s > 0.0) {
       const double tau = rs.time_constant_s, beta = rs.relaxation_exponent;
-      rest_rate_per_s_ = (std::pow((rest_time_s_ + dt_s) / tau, beta) - std::pow(rest_time_s_ / tau, beta)) / dt_s;
+      rest_rate_per_s_ = (rs.relaxation_progress(std::pow((rest_time_s_ + dt_s) / tau, beta)) -
+                          rs.relaxation_progress(std::pow(rest_time_s_ / tau, beta))) / dt_s;
       rest_time_s_ += dt_s;
     }
   }

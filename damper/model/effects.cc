@@ -60,14 +60,15 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   }
   if (s.has("residual_static")) {
     const common::YamlSection r = s.section("residual_static");
-    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent", "held_change_kip",
-                  "ring_kip", "ring_frequency_hz", "ring_decay_s"});
+    r.allow_only({"ratio", "time_constant_s", "relaxed_share", "offset_kip", "relaxation_exponent", "relaxation_tail",
+                  "held_change_kip", "ring_kip", "ring_frequency_hz", "ring_decay_s"});
     ResidualStaticEffect x;
     x.ratio = r.get_double_in("ratio", 0.0, 5.0);
     x.time_constant_s = r.get_double_in("time_constant_s", 1e-4, 1e6);
     x.relaxed_share = r.get_double_in("relaxed_share", 1.0, 0.0, 1.0);
     x.offset_kip = r.get_double_in("offset_kip", 0.0, -50.0, 50.0);
     x.relaxation_exponent = r.get_double_in("relaxation_exponent", 1.0, 0.05, 1.0);
+    x.relaxation_tail = r.get_double_in("relaxation_tail", 0.0, -1.0, 10.0);
     x.held_change_kip = r.get_double_in("held_change_kip", 0.0, -50.0, 50.0);
     x.ring_kip = r.get_double_in("ring_kip", 0.0, -50.0, 50.0);
     x.ring_frequency_hz = r.get_double_in("ring_frequency_hz", 3.0, 1e-3, 1e3);
@@ -205,7 +206,8 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                   "micro_damping_speed_in_per_s", "overshoot_share", "overshoot_length_in",
                   "stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share",
                   "travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share",
-                  "bank_share", "bank_stiffness_ratio", "bank_spread_exponent"});
+                  "bank_share", "bank_stiffness_ratio", "bank_spread_exponent", "weakening_share",
+                  "weakening_length_in", "weakening_exponent"});
     e.transition_shape = TransitionShapeEffect{t.get_double_in("exponent", 1.0, 0.1, 50.0),
                                                t.get_double_in("elastic_unloading", 0.0, 0.0, 1.0),
                                                t.get_double_in("breakaway_ratio", 0.0, 0.0, 0.9),
@@ -225,7 +227,10 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
                                                t.get_double_in("travel_pulse_rise_share", 0.4, 0.01, 0.95),
                                                t.get_double_in("bank_share", 0.0, 0.0, 0.95),
                                                t.get_double_in("bank_stiffness_ratio", 1.0, 1e-3, 1e3),
-                                               t.get_double_in("bank_spread_exponent", 1.0, 0.0, 10.0)};
+                                               t.get_double_in("bank_spread_exponent", 1.0, 0.0, 10.0),
+                                               t.get_double_in("weakening_share", 0.0, 0.0, 10.0),
+                                               t.get_double_in("weakening_length_in", 0.5, 1e-3, 1e3),
+                                               t.get_double_in("weakening_exponent", 1.0, 0.05, 20.0)};
   }
   return e;
 }
@@ -350,7 +355,8 @@ std::vector<EffectSpec> build_library() {
   lib.push_back(make_spec<std::optional<ResidualStaticEffect> ModelEffects::*, ResidualStaticEffect>(
       "residual_static", "at rest the band force settles from the force held at the stop towards a rest level (relaxation, residual static force, recovery towards a set level)",
       "dz/dt += -w (z - z_r)/tau_r, w = exp(-(s/0.05)^2), s = |v| low-passed (0.05 s), S(z_r) = (1 - m) S(z_held) + m S(z_o) + sign(z_held) held_change, "
-      "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) exp(-(t_rest/tau_r)^beta); "
+      "S(z_o) = sign(z) ratio Fc + offset; at a full rest z - z_r = (z_held - z_r) (1 + c x)^(-1/c), x = (t_rest/tau_r)^beta "
+      "(c = relaxation_tail: 0 exp(-x), -1 Andrade's 1 - x, 1 Nutting's 1/(1 + x)); "
       "ring-down: F += R sign(F_stop) exp(-t_s/tau_g) sin(2 pi f_g t_s) while |v| < 0.05 in/s, t_s since then",
       {{"ratio", 0.0, 1.5, 1.0, 0.5, false},
        {"time_constant_s", 0.02, 100.0, 100.0, 0.2, true},
@@ -360,7 +366,8 @@ std::vector<EffectSpec> build_library() {
        {"held_change_kip", -3.0, 3.0, 0.0, 0.0, false},
        {"ring_kip", -3.0, 3.0, 0.0, 0.3, false},
        {"ring_frequency_hz", 0.5, 15.0, 3.0, 3.0, true},
-       {"ring_decay_s", 0.05, 3.0, 0.5, 0.5, true}},
+       {"ring_decay_s", 0.05, 3.0, 0.5, 0.5, true},
+       {"relaxation_tail", -1.0, 2.0, 0.0, -0.7, false}},
       &ModelEffects::residual_static,
       std::function<ResidualStaticEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ResidualStaticEffect r;
@@ -373,11 +380,13 @@ std::vector<EffectSpec> build_library() {
         r.ring_kip = t[6];
         r.ring_frequency_hz = t[7];
         r.ring_decay_s = t[8];
+        r.relaxation_tail = t[9];
         return r;
       }),
       std::function<std::vector<double>(const ResidualStaticEffect&)>([](const ResidualStaticEffect& r) {
         return std::vector<double>{r.ratio,          r.time_constant_s, r.relaxed_share,     r.offset_kip, r.relaxation_exponent,
-                                   r.held_change_kip, r.ring_kip,       r.ring_frequency_hz, r.ring_decay_s};
+                                   r.held_change_kip, r.ring_kip,       r.ring_frequency_hz, r.ring_decay_s,
+                                   r.relaxation_tail};
       })));
   lib.push_back(make_spec<std::optional<ActuatorLagEffect> ModelEffects::*, ActuatorLagEffect>(
       "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
@@ -638,7 +647,8 @@ std::vector<EffectSpec> build_library() {
       "the reversal (l = stroke_peak_length_in, r = stroke_peak_rise_share); F += travel_pulse_share Fc (w1 - w2)/(2 P_max), "
       "dw_j/ds = (sgn v - w_j)/e_j, e2 = travel_pulse_length_in, e1 = travel_pulse_rise_share e2; an Iwan bank: "
       "F_band = (1 - bank_share) N S(z) + bank_share N sum e_k, 16 elasto-plastic elements of stiffness "
-      "bank_stiffness_ratio sigma0/16 slipping at w_k g, w_k ~ ((k - 1/2)/16)^bank_spread_exponent",
+      "bank_stiffness_ratio sigma0/16 slipping at w_k g, w_k ~ ((k - 1/2)/16)^bank_spread_exponent; slip weakening: "
+      "Fc, Fs x (1 + weakening_share (1 - s/weakening_length_in)^weakening_exponent) for s < weakening_length_in",
       {{"exponent", 0.3, 12.0, 1.0, 3.0, true},
        {"elastic_unloading", 0.0, 1.0, 0.0, 0.8, false},
        {"breakaway_ratio", 0.0, 0.9, 0.0, 0.5, false},
@@ -658,11 +668,14 @@ std::vector<EffectSpec> build_library() {
        {"travel_pulse_rise_share", 0.1, 0.8, 0.4, 0.4, false},
        {"bank_share", 0.0, 0.9, 0.0, 0.3, false},
        {"bank_stiffness_ratio", 0.1, 10.0, 1.0, 1.0, true},
-       {"bank_spread_exponent", 0.0, 4.0, 1.0, 1.0, false}},
+       {"bank_spread_exponent", 0.0, 4.0, 1.0, 1.0, false},
+       {"weakening_share", 0.0, 2.0, 0.0, 0.3, false},
+       {"weakening_length_in", 0.05, 3.0, 0.5, 0.5, true},
+       {"weakening_exponent", 0.5, 6.0, 1.0, 1.0, true}},
       &ModelEffects::transition_shape,
       std::function<TransitionShapeEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         return TransitionShapeEffect{t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9], t[10], t[11], t[12], t[13],
-                                     t[14], t[15], t[16], t[17], t[18], t[19]};
+                                     t[14], t[15], t[16], t[17], t[18], t[19], t[20], t[21], t[22]};
       }),
       std::function<std::vector<double>(const TransitionShapeEffect&)>([](const TransitionShapeEffect& a) {
         return std::vector<double>{a.exponent,      a.elastic_unloading, a.breakaway_ratio,
@@ -671,7 +684,8 @@ std::vector<EffectSpec> build_library() {
                                    a.overshoot_share, a.overshoot_length_in,
                                    a.stroke_peak_share, a.stroke_peak_length_in, a.stroke_peak_rise_share,
                                    a.travel_pulse_share, a.travel_pulse_length_in, a.travel_pulse_rise_share,
-                                   a.bank_share, a.bank_stiffness_ratio, a.bank_spread_exponent};
+                                   a.bank_share, a.bank_stiffness_ratio, a.bank_spread_exponent,
+                                   a.weakening_share, a.weakening_length_in, a.weakening_exponent};
       })));
   // Physics signatures (regimes where each effect must take residual away) and confusable pairs.
   auto sig = [&lib](const std::string& name, std::vector<std::string> regimes, std::vector<std::string> confusable) {
@@ -686,7 +700,7 @@ std::vector<EffectSpec> build_library() {
   for (EffectSpec& s : lib)
     if (s.name == "residual_static") {
       s.rest_level = {{"ratio", 0.0}, {"relaxed_share", 1.0}, {"offset_kip", 0.0}, {"held_change_kip", 0.0}};
-      s.rest_shape = {"relaxation_exponent"};
+      s.rest_shape = {"relaxation_exponent", "relaxation_tail"};
       s.mechanisms = {{"ring_kip", "ring_frequency_hz", "ring_decay_s"}};  // beside the rest levels: the ring-down
     }
   // Physical mechanisms of each family (EffectSpec::mechanisms).
@@ -789,7 +803,8 @@ std::vector<EffectSpec> build_library() {
                             {"overshoot_share", "overshoot_length_in"},  // Bliman-Sorine's stiction peak in travel
                             {"stroke_peak_share", "stroke_peak_length_in", "stroke_peak_rise_share"},  // a bump since the reversal
                             {"travel_pulse_share", "travel_pulse_length_in", "travel_pulse_rise_share"},  // Bliman-Sorine's pulse
-                            {"bank_share", "bank_stiffness_ratio", "bank_spread_exponent"}});  // an Iwan bank
+                            {"bank_share", "bank_stiffness_ratio", "bank_spread_exponent"},  // an Iwan bank
+                            {"weakening_share", "weakening_length_in", "weakening_exponent"}});  // slip weakening
   sig("actuator_lag", {"actuators"}, {"pretension"});
   sig("asymmetry", {"sliding", "reversal", "sticking"}, {"self_energizing", "pretension"});
   sig("velocity", {"sliding", "sticking", "reversal"}, {"transition_shape"});

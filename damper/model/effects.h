@@ -121,6 +121,12 @@
 ///    drum came to rest (w reached 1/2), so that z − z_r = (z_h − z_r) exp(−(t_r/τ_r)^β) at rest
 ///    (Williams & Watts 1970; a spread of relaxation times, Findley et al. 1976); while the drum
 ///    moves (w < 1/2) the rate stays w/τ_r. β = 1: the exponential above.
+///    The tail of the settling (relaxation_tail = c, twenty-seventh session): at rest z − z_r =
+///    (z_h − z_r) (1 + c x)^(−1/c), x = (t_r/τ_r)^β — c = 0 the stretched exponential above, c = −1
+///    1 − x to the rest level at t_r = τ_r (Andrade 1910, Proc. R. Soc. A 84:1: transient creep as t^β,
+///    β = 1/3, with no time constant of its own and no levelling off over a rest), c > 0 a power-law
+///    tail (1/(1 + x) at c = 1: Nutting 1921's power-law relaxation; Findley et al. 1976). Set 37 t19
+///    (an outside author's Andrade creep at rest, × (1 − 0.148 (t/1 s)^(1/3)), strong) was named none.
 ///    Set change of the held force (held_change_kip = Δ_h, added 2026-11-27 after outside
 ///    authors' residual band tension building up at rest in the last slip direction and a
 ///    logarithmic creep by a set amount, blind set 20 t01 and t26, both beyond a share m of the
@@ -493,6 +499,18 @@
 ///    (Σ w_k g = g). The held force is shared by the w_k at the start. Four outside authors wrote
 ///    such banks (sets 30 t25, 31 t27, 32 t21, 33 t15); the single slow element (φ, k2) did not reach
 ///    them: set 33 t15 (weak) was named none, transition_shape 30 % of the excess.
+///    Slip weakening since the reversal (weakening_share = ρ_w, weakening_length_in = D_c,
+///    weakening_exponent = n; twenty-seventh session): the levels the bristle approaches (Fc and Fs,
+///    so g) × (1 + ρ_w W(s)), W(s) = (1 − s/D_c)^n for s < D_c and 0 beyond, s the drum travel since
+///    the reversal (the turn point, as the stroke bump counts it; the first stroke from the record's
+///    start): the strength the contact regained while it held is lost over a slip distance D_c
+///    (Ida 1972, J. Geophys. Res. 77:3796; Palmer & Rice 1973, Proc. R. Soc. A 332:527: n = 1, the
+///    linear slip-weakening law; n > 1 a faster, rounder loss, close to Ohnaka's exponential for large
+///    n). Unlike the stroke bump, which scales the loaded band force and is zero at the reversal, it
+///    raises the level itself from the turn point on, so the bristle rises towards a higher level;
+///    steady sliding (s >= D_c) unchanged. Set 37 t17 (an outside author's linear slip weakening,
+///    ρ 0.88, D_c 0.63 in, weak) was named none: the exponential stroke bump and travel pulse took 57 %
+///    of its excess.
 ///
 /// The candidate list (effect_library()) gives each effect's name, parameters, bounds and the
 /// value at which it vanishes; diagnose (damper/diagnose/diagnose.h) fits them on measured data.
@@ -575,6 +593,16 @@ struct ResidualStaticEffect {
   /// exp(−(t_r/τ_r)^β) of the rest time t_r; 1 (default) the exponential, < 1 a spread of
   /// relaxation times (fast at first, a long tail: close to a logarithmic creep for small β).
   double relaxation_exponent = 1.0;
+  /// c: the tail of the settling at rest, (1 + c x)^(−1/c) of x = (t_r/τ_r)^β (0, the default:
+  /// exp(−x), Kohlrausch; −1: 1 − x down to the rest level at t_r = τ_r, Andrade's transient creep
+  /// t^β with no time constant of its own; > 0: a power-law tail, 1/(1 + x) at c = 1, Nutting's).
+  double relaxation_tail = 0.0;
+  /// The settled share of the way to the rest level after x = (t_r/τ_r)^β: −ln of what is left,
+  /// ln(1 + c x)/c (x at c = 0); what is left floored at 1e-3.
+  double relaxation_progress(double x) const {
+    if (relaxation_tail == 0.0) return x;
+    return std::log(std::max(1.0 + relaxation_tail * x, 1e-3)) / relaxation_tail;
+  }
   /// Δ_h: a set change of the held force at rest in the direction the band is loaded, kip
   /// (> 0 the band tightens, residual band tension building up; < 0 it slackens by a set amount
   /// whatever force it held, as a creeping contact does).
@@ -816,6 +844,16 @@ struct TransitionShapeEffect {
   double bank_share = 0.0;
   double bank_stiffness_ratio = 1.0;   ///< κ_b > 0: the bank's initial stiffness / σ0
   double bank_spread_exponent = 1.0;   ///< m >= 0: element k's slip force ∝ ((k − ½)/N)^m (1: Iwan's uniform density; 0: all alike)
+  /// ρ_w >= 0: slip weakening since the reversal, the levels × (1 + ρ_w W(s)) (file comment); 0: none
+  double weakening_share = 0.0;
+  double weakening_length_in = 0.5;  ///< D_c: the travel over which the levels weaken back to g, in
+  double weakening_exponent = 1.0;   ///< n > 0: W(s) = (1 − s/D_c)^n for s < D_c (1: linear, Ida/Palmer-Rice)
+  /// W(s): 1 at the reversal, 0 from s = D_c on.
+  double slip_weakening(double travel_in) const {
+    if (travel_in >= weakening_length_in) return 0.0;
+    const double left = 1.0 - travel_in / weakening_length_in;
+    return weakening_exponent == 1.0 ? left : std::pow(left, weakening_exponent);
+  }
   static constexpr int kBankElements = 16;  ///< N
   /// w_k: element k's (0-based) slip force as a share of g; the N shares sum to 1.
   double bank_limit_share(int k) const {
@@ -880,7 +918,7 @@ struct EffectSpec {
   std::function<bool(const ModelEffects& effects)> present;
   std::function<void(ModelEffects& effects)> remove;
   /// Physics signature: the regimes (names as in diagnose_data.h: reversal, sticking, sliding,
-  /// actuators, after_stop) where the effect must take residual away.
+  /// actuators, after_stop; and the mask band_reloading) where the effect must take residual away.
   std::vector<std::string> regimes;
   /// Effects whose residual signature overlaps this one's (confusable pairs).
   std::vector<std::string> confusable;

@@ -459,33 +459,34 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
   EXPECT_EQ(distinct_rest_levels({0.01, 0.04}), 1);  // within 0.05 kip
   EXPECT_EQ(distinct_rest_levels({2.0, 1.0, -1.5}), 3);
   const EffectSpec& rs = effect_spec("residual_static");
-  ASSERT_EQ(rs.parameters.size(), 9u);
+  ASSERT_EQ(rs.parameters.size(), 10u);
   // No rest, or as many rests as rest-level parameters: the ring-down (its own mechanism), then the
   // whole family.
   EXPECT_EQ(candidate_subfamilies(rs, 0).size(), 2u);
   EXPECT_EQ(candidate_subfamilies(rs, 4).size(), 2u);
   EXPECT_EQ(candidate_subfamilies(rs, 4).front().parameters.size(), 3u);
-  EXPECT_EQ(candidate_subfamilies(rs, 4).back().parameters.size(), 9u);
+  EXPECT_EQ(candidate_subfamilies(rs, 4).back().parameters.size(), 10u);
   // A family without a rest level: the rest count changes nothing.
   EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).size(), candidate_subfamilies(effect_spec("backlash"), 0).size());
   EXPECT_EQ(candidate_subfamilies(effect_spec("backlash"), 1).back().parameters.size(),
             effect_spec("backlash").parameters.size());
   for (int levels : {1, 2, 3}) {
     std::vector<EffectSpec> subs = candidate_subfamilies(rs, levels);
-    // 4 choose `levels` (ratio, relaxed_share, offset_kip, held_change_kip) with the relaxation
-    // exponent held at 1, the same with it free, the ring-down alone, then the whole family.
+    // 4 choose `levels` (ratio, relaxed_share, offset_kip, held_change_kip) with the rest law's
+    // shape (relaxation exponent 1, tail 0) held, the same with it free, the ring-down alone, then
+    // the whole family.
     const std::size_t choices = levels == 2 ? 6u : 4u;
     ASSERT_EQ(subs.size(), 2 * choices + 2) << levels;
     EXPECT_EQ(subs.front().subfamily.rfind("ratio", 0), 0u) << subs.front().subfamily;  // ratio first
     EXPECT_TRUE(subs.back().subfamily.empty());
-    EXPECT_EQ(subs.back().parameters.size(), 9u);
+    EXPECT_EQ(subs.back().parameters.size(), 10u);
     subs.pop_back();
     EXPECT_EQ(subs.back().subfamily.rfind("ring_kip ring_frequency_hz ring_decay_s free;", 0), 0u) << subs.back().subfamily;
     subs.pop_back();
     for (std::size_t s = 0; s < subs.size(); ++s) {
       const EffectSpec& sub = subs[s];
       const bool shape_free = s >= choices;
-      ASSERT_EQ(sub.parameters.size(), static_cast<std::size_t>(1 + levels + (shape_free ? 1 : 0))) << sub.subfamily;
+      ASSERT_EQ(sub.parameters.size(), static_cast<std::size_t>(1 + levels + (shape_free ? 2 : 0))) << sub.subfamily;
       // set() puts the free values in their places and the fixed ones (ratio 0, relaxed_share 1,
       // offset_kip 0, held_change_kip 0) in the others; get() reads the free ones back.
       std::vector<double> theta;
@@ -496,12 +497,16 @@ TEST(DiagnoseSelection, RestLevelSubfamiliesFreeAsManyParametersAsDistinctRests)
       EXPECT_EQ(sub.get(e), theta);
       const std::vector<double> all = rs.get(e);
       // -1: time_constant_s, always free; the ring-down at its null values (no ring)
-      const double fixed[] = {0.0, -1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5};
+      const double fixed[] = {0.0, -1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0};
       EXPECT_EQ(std::find_if(sub.parameters.begin(), sub.parameters.end(),
                              [](const EffectParameter& q) { return q.name == "relaxation_exponent"; }) != sub.parameters.end(),
                 shape_free)
           << sub.subfamily;
-      for (std::size_t j = 0; j < 9; ++j) {
+      EXPECT_EQ(std::find_if(sub.parameters.begin(), sub.parameters.end(),
+                             [](const EffectParameter& q) { return q.name == "relaxation_tail"; }) != sub.parameters.end(),
+                shape_free)
+          << sub.subfamily;
+      for (std::size_t j = 0; j < 10; ++j) {
         const auto at = std::find_if(sub.parameters.begin(), sub.parameters.end(),
                                      [&](const EffectParameter& q) { return q.name == rs.parameters[j].name; });
         if (at != sub.parameters.end()) {
@@ -610,7 +615,7 @@ TEST(DiagnoseSelection, JointLugreOfTheUpdatedModelUsesOnlyWindowsThatIdentify) 
 // rests, the effect is named and removes most of the held-out residual.
 TEST(DiagnoseSelection, OneRestPerRecordIsFittedWithOneRestLevelParameter) {
   BrfdParams truth = bench_base_model();
-  effect_spec("residual_static").set(truth.effects, {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5});
+  effect_spec("residual_static").set(truth.effects, {0.8, 0.1, 1.0, 0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0});
   std::vector<DiagnoseRecord> recs;
   for (BrfdTest& t : records_of(truth, 0.02, 21)) {
     const Segmentation seg = segment_record(t);

@@ -348,6 +348,42 @@ TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
   }
 }
 
+// residual_static's tail of the settling (relaxation_tail c): at rest the force follows
+// (1 − m) F_h + m F_h (1 + c x)^(−1/c), x = ((t − t*)/τ_r)^β. c = −1 is Andrade's creep, F_h (1 − x)
+// with m = 1 — the cube root of the rest time at β = 1/3, no levelling off before t = τ_r; c = 1 is
+// Nutting's power-law tail F_h/(1 + x). Both directions, and neither is Kohlrausch's exp(−x) with the
+// same τ_r and β (fails if the tail is ignored, or the rest clock not restarted at the second stop).
+TEST(Effects, RestSettlingTailIsAndradesCreepOrAPowerLaw) {
+  for (const double c : {-1.0, 1.0}) {
+    BrfdParams p = coulomb_band();
+    const double m = 1.0, tau = c < 0.0 ? 60.0 : 0.5, beta = c < 0.0 ? 1.0 / 3.0 : 0.6;
+    p.effects.residual_static = ResidualStaticEffect{};
+    p.effects.residual_static->ratio = 0.0;
+    p.effects.residual_static->time_constant_s = tau;
+    p.effects.residual_static->relaxed_share = m;
+    p.effects.residual_static->relaxation_exponent = beta;
+    p.effects.residual_static->relaxation_tail = c;
+    BrfdModel model(p);
+    for (const double dir : {1.0, -1.0}) {
+      const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      auto law = [&](double held, double t) {
+        const double x = std::pow(t / tau, beta);
+        return (1.0 - m) * held + m * held * (c < 0.0 ? std::max(1.0 - x, 0.0) : 1.0 / (1.0 + x));
+      };
+      const RestStop r = rest_after_sliding(model, dir, 8000, law);
+      double kohlrausch_gap = 0.0;
+      for (double t = 0.0; t <= 7.9; t += 0.01)
+        kohlrausch_gap = std::max(kohlrausch_gap, std::abs(law(r.held, t) - ((1.0 - m) * r.held + m * r.held * std::exp(-std::pow(t / tau, beta)))));
+      EXPECT_NEAR(r.held, dir * fc, 0.1 * fc) << "c " << c << " dir " << dir;
+      EXPECT_LT(r.worst, 2e-3 * fc) << "c " << c << " dir " << dir;
+      EXPECT_GT(kohlrausch_gap, 0.05 * fc) << "c " << c << " dir " << dir;
+      if (c < 0.0) {
+        EXPECT_NEAR(r.last / r.held, 1.0 - std::cbrt(7.951 / tau), 0.01) << "Andrade: the cube root of the rest time";
+      }
+    }
+  }
+}
+
 // residual_static's ring-down (ring_kip R, ring_frequency_hz f_g, ring_decay_s τ_g): from the step the
 // drum stops, the force is that of the same model without the ring plus R sign(F_stop) e^(−t/τ_g)
 // sin(2π f_g t), forward and backward; while the drum slides there is no ring. Fails with the ring
@@ -540,6 +576,42 @@ TEST(Effects, StictionBumpFollowsTheTravelSinceTheReversal) {
     EXPECT_NEAR(peak, pk, 1e-3 * pk) << "dir " << dir << ": the bump's height, a share of the band force";
     EXPECT_NEAR(peak_s, peak_at, 0.01) << "dir " << dir << ": where it peaks, in";
     f0 = bristle;
+  }
+}
+
+// transition_shape's slip weakening since the reversal, on a Coulomb band with a stiff bristle (the
+// force follows its level within 1e-3 in of travel): the force is dir Fc (1 + ρ_w (1 − s/D_c)^n) for
+// the travel s < D_c since the turn point (the first stroke: since the start) and dir Fc beyond, in
+// each of three strokes; n = 1 is Ida and Palmer-Rice's linear law, n = 2 a rounder one. Fails if the
+// travel is not restarted at the reversal, the level not raised at the turn point (the stroke bump's
+// zero there), or the law not reaching g at D_c.
+TEST(Effects, SlipWeakeningRaisesTheLevelAtTheReversalAndLosesItOverTheSlipDistance) {
+  for (const double n : {1.0, 2.0}) {
+    BrfdParams p = coulomb_band();
+    p.lugre.sigma0_kip_per_in = 2.0e4;
+    const double rho = 0.6, d_c = 0.4, v = 0.5, dt = 1e-3;
+    p.effects.transition_shape = TransitionShapeEffect{};
+    p.effects.transition_shape->weakening_share = rho;
+    p.effects.transition_shape->weakening_length_in = d_c;
+    p.effects.transition_shape->weakening_exponent = n;
+    BrfdModel m(p);
+    DamperInput in;
+    for (const double dir : {1.0, -1.0, 1.0}) {
+      const double g = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
+      in.drum_vel_in_per_s = dir * v;
+      double worst = 0.0, f = 0.0;
+      const int steps = static_cast<int>(std::round(2.0 * d_c / (v * dt)));
+      for (int i = 1; i <= steps; ++i) {
+        in.drum_disp_in += dir * v * dt;
+        f = m.step(in, dt);
+        const double s = i * v * dt;
+        if (s < 0.02) continue;  // the bristle reversing (2 g/σ0 ≈ 3e-4 in) and the reversal's detection (0.004 in)
+        const double want = dir * g * (1.0 + rho * (s < d_c ? std::pow(1.0 - s / d_c, n) : 0.0));
+        worst = std::max(worst, std::abs(f - want));
+      }
+      EXPECT_LT(worst, 3e-3 * g) << "n " << n << " dir " << dir;
+      EXPECT_NEAR(f, dir * g, 1e-6 * g) << "n " << n << " dir " << dir << ": g in sliding beyond D_c";
+    }
   }
 }
 
