@@ -304,7 +304,7 @@ std::vector<BenchCase> bench_cases(bool quick) {
   std::vector<BenchCase> c;
   if (quick) {
     c.push_back(library_case("backlash", "strong", {0.06, 0.04, 2.0, 4.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 5.0, 0.15, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0}));
-    c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
+    c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0, 0.0}));
     c.push_back(own_backlash("weak", 0.04, 0.1));
     c.push_back(own_friction_d2("strong", 0.3));
     c.push_back(none_case(false));
@@ -344,18 +344,20 @@ std::vector<BenchCase> bench_cases(bool quick) {
   c.push_back(library_case("residual_static", "ring", {1.0, 100.0, 0.0, 0.0, 1.0, 0.0, 0.5, 4.0, 0.4, 0.0}));
   // Andrade's transient creep at rest (relaxation_tail -1, β 1/3): no levelling off over a rest.
   c.push_back(library_case("residual_static", "andrade", {0.0, 60.0, 1.0, 0.0, 1.0 / 3.0, 0.0, 0.0, 3.0, 0.5, -1.0}));
-  c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0, 0.0, 2.0, 1.0, 1.0}));
-  c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0}));
+  c.push_back(library_case("actuator_lag", "weak", {0.06, 0.0, 1.0, 0.0, 2.0, 1.0, 1.0, 0.0}));
+  c.push_back(library_case("actuator_lag", "strong", {0.05, 0.15, 0.5, 0.0, 2.0, 1.0, 1.0, 0.0}));
   // A transport delay of 0.08 s; the actuators slewing at no more than 0.1 in/s.
-  c.push_back(library_case("actuator_lag", "delay", {0.0, 0.0, 1.0, 0.08, 2.0, 1.0, 1.0}));
-  c.push_back(library_case("actuator_lag", "rate_limit", {0.0, 0.0, 1.0, 0.0, 0.1, 1.0, 1.0}));
+  c.push_back(library_case("actuator_lag", "delay", {0.0, 0.0, 1.0, 0.08, 2.0, 1.0, 1.0, 0.0}));
+  c.push_back(library_case("actuator_lag", "rate_limit", {0.0, 0.0, 1.0, 0.0, 0.1, 1.0, 1.0, 0.0}));
   // Half the clamping at once, half creeping after it with τ 0.8 s (a Zener element).
-  c.push_back(library_case("actuator_lag", "partial", {0.8, 0.0, 1.0, 0.0, 2.0, 0.5, 1.0}));
+  c.push_back(library_case("actuator_lag", "partial", {0.8, 0.0, 1.0, 0.0, 2.0, 0.5, 1.0, 0.0}));
   // Tightens with τ 0.05 s, releases (actuators extending) four times slower.
-  c.push_back(library_case("actuator_lag", "one_way", {0.05, 0.0, 1.0, 0.0, 2.0, 1.0, 4.0}));
+  c.push_back(library_case("actuator_lag", "one_way", {0.05, 0.0, 1.0, 0.0, 2.0, 1.0, 4.0, 0.0}));
   // The clamping rings after each actuator motion: a second-order response of period 1.1 s, ζ 0.3
   // (its envelope decays over 0.6 s, after the actuators stopped).
-  c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0}));
+  c.push_back(library_case("actuator_lag", "ringing", {0.0, 1.1, 0.3, 0.0, 2.0, 1.0, 1.0, 0.0}));
+  // Play in each actuator's drive, half-width 0.006 in (a fifth of the larger episodes' travel).
+  c.push_back(library_case("actuator_lag", "play", {0.0, 0.0, 1.0, 0.0, 2.0, 1.0, 1.0, 0.006}));
   c.push_back(library_case("asymmetry", "weak", {0.08, 0.15, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
   c.push_back(library_case("asymmetry", "strong", {0.15, 0.3, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));
   c.push_back(library_case("asymmetry", "speed", {0.0, 0.0, 0.35, 0.5, 0.0, 0.5, 0.0, 1.0, 0.0, 3000.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}));  // Stribeck speed and σ2 by direction

@@ -257,7 +257,8 @@ GateResult gates(const CandidateScore& c, const std::vector<int>& weights, const
   // The gate (3) is waived for a candidate that leaves only noise of a large discrepancy
   // (DiagnoseOptions::signature_waiver_floor).
   const bool whole = n > 0.0 && null_sse >= o.signature_waiver_excess * n * sigma2 &&
-                     null_sse - g.gain <= o.signature_waiver_floor * n * sigma2;
+                     (null_sse - g.gain <= o.signature_waiver_floor * n * sigma2 ||
+                      (null_sse - g.gain <= o.signature_waiver_near_floor * n * sigma2 && g.excess_share >= o.signature_waiver_share));
   if (check_signature && !whole && !signature_holds(c, o)) {
     g.why = "only " + format_significant(100.0 * c.signature_share, 2) + "% of its gain sits in its own regimes (" +
             format_significant(100.0 * c.own_time_share, 2) + "% of the samples; density " +

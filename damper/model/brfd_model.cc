@@ -102,6 +102,8 @@ void BrfdModel::reset() {
   resp1_in_ = lag1_in_;
   rated1_in_ = lag1_in_;
   rated2_in_ = lag2_in_;
+  played1_in_ = lag1_in_;
+  played2_in_ = lag2_in_;
   actuator_clock_s_ = 0.0;
   actuator_history_.clear();
   actuator_history_.push_back({0.0, lag1_in_, lag2_in_});  // at x'_k at the start and before it
@@ -681,7 +683,7 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
     }
   }
   if (e.actuator_lag) {
-    // The chain: transport delay, rate limit, first-order lag, second-order response (effects.h).
+    // The chain: transport delay, rate limit, play, first-order lag, second-order response (effects.h).
     double x1 = in.actuator1_in, x2 = in.actuator2_in;
     if (e.actuator_lag->delay_s > 0.0) {
       actuator_clock_s_ += dt_s;
@@ -706,6 +708,13 @@ double BrfdModel::step_states_with_effects(const DamperInput& drum, double dt_s)
       rated2_in_ += std::clamp(x2 - rated2_in_, -most, most);
       x1 = rated1_in_;
       x2 = rated2_in_;
+    }
+    const double play = e.actuator_lag->actuator_play_in;  // the drive's clearance: a play operator (effects.h)
+    if (play > 0.0) {
+      played1_in_ = std::clamp(played1_in_, x1 - play, x1 + play);
+      played2_in_ = std::clamp(played2_in_, x2 - play, x2 + play);
+      x1 = played1_in_;
+      x2 = played2_in_;
     }
     // First-order lag, exact for the step's input held; τ_a retracting, ρ_e τ_a extending.
     auto follow = [&](double x, double lagged) {

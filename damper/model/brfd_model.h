@@ -187,6 +187,7 @@ class BrfdModel final : public DamperModel {
   std::deque<std::array<double, 3>> actuator_history_;
   double actuator_clock_s_ = 0.0;
   double rated1_in_ = 0.0, rated2_in_ = 0.0;  ///< actuator positions after the rate limit, in
+  double played1_in_ = 0.0, played2_in_ = 0.0;  ///< actuator positions after the drive's play, in
   double resp1_rate_ = 0.0, resp2_rate_ = 0.0;  ///< dy_k/dt, in/s
   double soft_spring(double over) const;  ///< h(u) of backlash's re-tensioning (u itself without it)
   double slow_speed_ = 0.0;               ///< s~ of residual_static, in/s

@@ -78,7 +78,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
   if (s.has("actuator_lag")) {
     const common::YamlSection a = s.section("actuator_lag");
     a.allow_only({"time_constant_s", "natural_period_s", "damping_ratio", "delay_s", "rate_limit_in_per_s",
-                  "lagged_share", "extend_time_ratio"});
+                  "lagged_share", "extend_time_ratio", "actuator_play_in"});
     ActuatorLagEffect x;
     x.time_constant_s = a.get_double_in("time_constant_s", 0.0, 100.0);
     x.natural_period_s = a.get_double_in("natural_period_s", 0.0, 0.0, 100.0);
@@ -87,6 +87,7 @@ ModelEffects effects_from_yaml(const common::YamlSection& s) {
     x.rate_limit_in_per_s = a.get_double_in("rate_limit_in_per_s", 0.0, 0.0, 1e6);
     x.lagged_share = a.get_double_in("lagged_share", 1.0, 0.0, 1.0);
     x.extend_time_ratio = a.get_double_in("extend_time_ratio", 1.0, 0.01, 100.0);
+    x.actuator_play_in = a.get_double_in("actuator_play_in", 0.0, 0.0, 1.0);
     e.actuator_lag = x;
   }
   if (s.has("asymmetry")) {
@@ -392,14 +393,15 @@ std::vector<EffectSpec> build_library() {
       "actuator_lag", "kinetic friction follows the electric actuator motion late (delay, rate limit, first- and second-order response)",
       "Eq. (4) with (1 - a) x_k + a y_k: x_d = x_k(t - t_d) moving at most r per s, dx~_k/dt = (x_d - x~_k)/tau, "
       "tau = tau_a (x_d < x~_k), rho_e tau_a (x_d > x~_k), "
-      "y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T",
+      "y_k'' = w^2 (x~_k - y_k) - 2 zeta w y_k', w = 2 pi/T; after the rate limit a play of half-width actuator_play_in",
       {{"time_constant_s", 0.0, 1.5, 0.0, 0.08, false},
        {"natural_period_s", 0.0, 1.5, 0.0, 0.15, false},
        {"damping_ratio", 0.05, 2.0, 1.0, 0.3, true},
        {"delay_s", 0.0, 0.3, 0.0, 0.05, false},
        {"rate_limit_in_per_s", 0.02, 2.0, 2.0, 0.1, true},
        {"lagged_share", 0.0, 1.0, 1.0, 0.5, false, true},
-       {"extend_time_ratio", 0.1, 10.0, 1.0, 3.0, true}},
+       {"extend_time_ratio", 0.1, 10.0, 1.0, 3.0, true},
+       {"actuator_play_in", 0.0, 0.02, 0.0, 0.004, false}},
       &ModelEffects::actuator_lag,
       std::function<ActuatorLagEffect(const std::vector<double>&)>([](const std::vector<double>& t) {
         ActuatorLagEffect a;
@@ -410,12 +412,13 @@ std::vector<EffectSpec> build_library() {
         a.rate_limit_in_per_s = t[4];
         a.lagged_share = t[5];
         a.extend_time_ratio = t[6];
+        a.actuator_play_in = t[7];
         return a;
       }),
       std::function<std::vector<double>(const ActuatorLagEffect&)>([](const ActuatorLagEffect& a) {
         return std::vector<double>{a.time_constant_s, a.natural_period_s, a.damping_ratio, a.delay_s,
                                    a.rate_limit_in_per_s > 0.0 ? a.rate_limit_in_per_s : ActuatorLagEffect::kNoRateLimitInPerS,
-                                   a.lagged_share, a.extend_time_ratio};
+                                   a.lagged_share, a.extend_time_ratio, a.actuator_play_in};
       })));
   lib.push_back(make_spec<std::optional<AsymmetryEffect> ModelEffects::*, AsymmetryEffect>(
       "asymmetry", "direction asymmetry of friction levels, band stiffness, Stribeck speed and viscous force; one band's speed law, fade or run-in",
@@ -730,7 +733,8 @@ std::vector<EffectSpec> build_library() {
   mech("actuator_lag", {{"time_constant_s"}, {"natural_period_s", "damping_ratio"},  // first, second order
                         {"time_constant_s", "lagged_share"},       // part at once, part late (Zener creep)
                         {"time_constant_s", "extend_time_ratio"},  // slower (faster) one way
-                        {"delay_s"}, {"rate_limit_in_per_s"}});  // transport delay, rate limit
+                        {"delay_s"}, {"rate_limit_in_per_s"},  // transport delay, rate limit
+                        {"actuator_play_in"}});                 // play in the actuator drive
   // Each property by direction with where the difference sits (forward_share: both bands, or one).
   mech("asymmetry", {{"level", "forward_share"}, {"stiffness", "forward_share"}, {"motion_stiffness", "forward_share"},
                      {"stribeck_speed", "viscous", "forward_share"},

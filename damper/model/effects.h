@@ -162,6 +162,12 @@
 ///    the position moves towards the delayed one at most r per second; the diagnose search runs
 ///    0.02-2 in/s; 0, or 2 in/s and above — five times the fastest actuator motion of the measured
 ///    tests —, is no limit).
+///    Play in the actuator drive (actuator_play_in = h, twenty-seventh session): after the rate limit
+///    each actuator position passes a play operator of half-width h (Tao & Kokotović 1996, the
+///    backlash of a gear or linkage), x_p ← x − h where x − x_p > h, x + h where x − x_p < −h, held
+///    in between, x_p(0) = x'_k: the band sees the actuator's travel only once the clearance is taken
+///    up, and after an episode the clamping stays offset by up to h until the next motion. Set 38 t02
+///    (an outside author's linkage play, h = 0.0058 in, strong) was named none without it.
 ///  - asymmetry (level = a_F, stiffness = a_σ, stribeck_speed = a_v, viscous = a_2): direction
 ///    asymmetry beyond per-direction Fc/Fs (a different band is taut in each direction, so every
 ///    band property may differ, not only the levels):
@@ -629,6 +635,9 @@ struct ActuatorLagEffect {
   /// ρ_e: the first-order lag's time constant is ρ_e τ_a while the actuator extends ahead of x̃
   /// (x > x̃, the band slackening), τ_a while it retracts (1: the same both ways).
   double extend_time_ratio = 1.0;
+  /// h: half the clearance in each actuator's drive to its band, in (0: none); the band follows the
+  /// actuator's travel only once the clearance is taken up (a play operator, file comment).
+  double actuator_play_in = 0.0;
   /// No limit from here on (the diagnose search's end): 5 × the fastest actuator motion of the
   /// measured tests.
   static constexpr double kNoRateLimitInPerS = 2.0;

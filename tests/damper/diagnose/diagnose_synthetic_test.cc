@@ -419,7 +419,8 @@ TEST(DiagnoseSelection, AResampleDrawingARecordAsItsWorsePartStillCountsTheChoic
 }
 
 // Gate (3) is waived for a candidate that leaves nothing but noise of a large discrepancy: held-out
-// mean square within 1.2 σ² where the model without it is at least 4 σ² (blind set 30 t17: a slack
+// mean square within 1.2 σ² (or 3 σ² with 90 % of the excess removed) where the model without it is
+// at least 4 σ² (blind set 30 t17: a slack
 // that biased the passive window's base everywhere; its backlash left 0.0262 kip of a 0.345 kip
 // residual, noise 0.0275, with 10 % of its gain in its regimes). Not for a candidate that leaves
 // 10 σ², nor where the model without it is already near the noise (3 σ²: a 'none' record).
@@ -442,6 +443,12 @@ TEST(DiagnoseSelection, SignatureGateIsWaivedOnlyForAWholeExplanation) {
   EXPECT_GE(choice_confidence({score(158.0 * sigma2, 0.91 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.99);
   EXPECT_EQ(choice_confidence({score(158.0 * sigma2, 10.0 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
   EXPECT_EQ(choice_confidence({score(3.0 * sigma2, 1.0 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
+  // A close shape of the right family: at most 3 σ² left with at least 90 % of the excess removed
+  // (set 38 t05: 244 σ² -> 2.5 σ²) is waived too; 2.9 σ² left of 5 σ² (52 % of the excess) is not.
+  EXPECT_GE(choice_confidence({score(244.0 * sigma2, 2.5 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.99);
+  EXPECT_GE(choice_confidence({score(20.0 * sigma2, 2.8 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.99);
+  EXPECT_EQ(choice_confidence({score(5.0 * sigma2, 2.9 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
+  EXPECT_EQ(choice_confidence({score(244.0 * sigma2, 3.5 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
   // ... and its signature holding, every one is chosen.
   for (const double after : {0.91, 10.0}) {
     CandidateScore c = score(158.0 * sigma2, after * sigma2);

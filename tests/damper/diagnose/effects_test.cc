@@ -1421,6 +1421,29 @@ TEST(Effects, ActuatorLagMechanismsFollowTheirClosedForms) {
     }
     EXPECT_LT(worst, 1e-9);
   }
+  {
+    // Play in the drive, half-width h: one sine cycle of the actuator, x'_1 − A sin(2π t/T), is seen
+    // as the play operator's output — nothing until the actuator has moved h, then x + h on the way
+    // down, held for 2h at the turn, x − h on the way up, and x'_1 + h after the cycle, which ends
+    // moving down (the clamping stays offset until the next motion). Fails with the play dropped or
+    // not held at the turn.
+    const double h = 0.006, amp = 0.03, period = 1.0;
+    ActuatorLagEffect a;
+    a.actuator_play_in = h;
+    p.effects.actuator_lag = a;
+    BrfdModel m(p);
+    double worst = 0.0, played = x0;
+    for (int i = 1; i <= 1536; ++i) {
+      const double t = i * dt;
+      in.actuator1_in = x0 - (t < period ? amp * std::sin(2.0 * M_PI * t / period) : 0.0);
+      m.step(in, dt);
+      played = std::clamp(played, in.actuator1_in - h, in.actuator1_in + h);
+      worst = std::max(worst, std::abs(seen(m, in) - played));
+      if (t < 0.03) EXPECT_NEAR(seen(m, in), x0, 1e-9) << "inside the clearance at first, t = " << t;
+    }
+    EXPECT_LT(worst, 1e-9);
+    EXPECT_NEAR(seen(m, in), x0 + h, 1e-9) << "offset by the play after the cycle (it ended moving down)";
+  }
 }
 
 TEST(Effects, SecondOrderActuatorFollowsTheClosedFormStepResponse) {
