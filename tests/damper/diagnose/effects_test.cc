@@ -322,18 +322,26 @@ RestStop rest_after_sliding(BrfdModel& model, double dir, int rest_steps, const 
   return r;
 }
 
-// residual_static's stretched settling (relaxation_exponent β < 1): from the moment the drum is at
-// rest (t*, when the held force F_h is frozen) the force follows Kohlrausch's law towards (1 − m) F_h,
-// F(t) = (1 − m) F_h + m F_h exp(−((t − t*)/τ_r)^β), fast at first with a long tail; and the rest
-// clock starts again at the next stop (the second direction follows the same law from its own F_h).
-TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
+// A Coulomb band whose held force relaxes at rest by the share m towards zero (ratio 0) with the
+// time constant τ_r, the Kohlrausch exponent β and the tail c.
+BrfdParams relaxing_band(double m, double tau, double beta, double c) {
   BrfdParams p = coulomb_band();
-  const double m = 0.5, tau = 2.0, beta = 0.35;
   p.effects.residual_static = ResidualStaticEffect{};
   p.effects.residual_static->ratio = 0.0;
   p.effects.residual_static->time_constant_s = tau;
   p.effects.residual_static->relaxed_share = m;
   p.effects.residual_static->relaxation_exponent = beta;
+  p.effects.residual_static->relaxation_tail = c;
+  return p;
+}
+
+// residual_static's stretched settling (relaxation_exponent β < 1): from the moment the drum is at
+// rest (t*, when the held force F_h is frozen) the force follows Kohlrausch's law towards (1 − m) F_h,
+// F(t) = (1 − m) F_h + m F_h exp(−((t − t*)/τ_r)^β), fast at first with a long tail; and the rest
+// clock starts again at the next stop (the second direction follows the same law from its own F_h).
+TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
+  const double m = 0.5, tau = 2.0, beta = 0.35;
+  const BrfdParams p = relaxing_band(m, tau, beta, 0.0);
   BrfdModel model(p);
   for (const double dir : {1.0, -1.0}) {
     const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
@@ -355,14 +363,8 @@ TEST(Effects, StretchedRestSettlingFollowsKohlrauschFromTheStop) {
 // same τ_r and β (fails if the tail is ignored, or the rest clock not restarted at the second stop).
 TEST(Effects, RestSettlingTailIsAndradesCreepOrAPowerLaw) {
   for (const double c : {-1.0, 1.0}) {
-    BrfdParams p = coulomb_band();
     const double m = 1.0, tau = c < 0.0 ? 60.0 : 0.5, beta = c < 0.0 ? 1.0 / 3.0 : 0.6;
-    p.effects.residual_static = ResidualStaticEffect{};
-    p.effects.residual_static->ratio = 0.0;
-    p.effects.residual_static->time_constant_s = tau;
-    p.effects.residual_static->relaxed_share = m;
-    p.effects.residual_static->relaxation_exponent = beta;
-    p.effects.residual_static->relaxation_tail = c;
+    const BrfdParams p = relaxing_band(m, tau, beta, c);
     BrfdModel model(p);
     for (const double dir : {1.0, -1.0}) {
       const double fc = dir > 0 ? p.lugre.fc_fwd_kip : p.lugre.fc_bwd_kip;
