@@ -124,6 +124,9 @@ struct CandidateScore {
   double own_time_share = 0.0;               ///< share of the held-out samples in its own regimes
   double own_residual_share = 0.0;           ///< share of the null model's held-out residual there
   double rest_share = 0.0;                   ///< share of the held-out gain from the change at the final rest (effects not acting there)
+  /// The regime gate waived on all held-out parts (DiagnoseOptions::signature_waiver_*): kept in
+  /// every bootstrap resample.
+  bool whole_explanation = false;
   double confidence = 0.0;                   ///< share of bootstrap resamples choosing it
   std::vector<double> part_gain_kip2;        ///< per held-out part: SSE(null) − SSE(candidate), kip²
   std::vector<double> part_null_kip2;        ///< per held-out part: SSE(null), kip²

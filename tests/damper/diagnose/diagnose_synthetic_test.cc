@@ -449,6 +449,14 @@ TEST(DiagnoseSelection, SignatureGateIsWaivedOnlyForAWholeExplanation) {
   EXPECT_GE(choice_confidence({score(20.0 * sigma2, 2.8 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.99);
   EXPECT_EQ(choice_confidence({score(5.0 * sigma2, 2.9 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
   EXPECT_EQ(choice_confidence({score(244.0 * sigma2, 3.5 * sigma2)}, part_record, 2, sigma2, o, 7u)[0], 0.0);
+  // The waiver is judged once on all parts (CandidateScore::whole_explanation) and kept in every
+  // resample: with one part worse (6 σ² left there, 2.25 σ² on all four), resamples that draw it
+  // twice leave more than 3 σ² and, judged per resample, drop the candidate.
+  CandidateScore uneven = score(244.0 * sigma2, 1.0 * sigma2);
+  uneven.part_gain_kip2[3] = 1000.0 * (244.0 - 6.0) * sigma2;
+  EXPECT_LT(choice_confidence({uneven}, part_record, 2, sigma2, o, 7u)[0], 0.95) << "judged per resample";
+  uneven.whole_explanation = true;
+  EXPECT_GE(choice_confidence({uneven}, part_record, 2, sigma2, o, 7u)[0], 0.99) << "judged on all parts";
   // ... and its signature holding, every one is chosen.
   for (const double after : {0.91, 10.0}) {
     CandidateScore c = score(158.0 * sigma2, after * sigma2);
